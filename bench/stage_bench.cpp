@@ -1,0 +1,115 @@
+// Per-stage timings against the 30 Hz frame budget (33.3 ms): the spread, the blend and the two
+// together, on the CPU reference and on CUDA, at 256², 1920×1080 and 3840×2160.
+// CUDA is timed with events around the launches; each benchmark warms up first and reports the
+// median of its repetitions. Run: build/default/bench/bleedsim_bench [--benchmark_filter=...]
+#include <benchmark/benchmark.h>
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/backend.h"
+#include "core/tissue.h"
+
+namespace bleedsim {
+namespace {
+
+constexpr double kFrameBudgetMs = 1000.0 / 30.0;
+constexpr int kWarmUpRuns = 3;
+
+struct Size {
+  const char* name;
+  int width, height;
+};
+const Size kSizes[] = {{"256x256", 256, 256}, {"1920x1080", 1920, 1080}, {"3840x2160", 3840, 2160}};
+
+// A steady scene: eight half-grown stains over a 0.05 mm/px panel, overlapping in pairs.
+struct StageScene {
+  std::unique_ptr<Backend> backend;
+  PixelGrid grid;
+  Buffer cuts, stain, tissue, frame;
+  int cut_count = 8;
+
+  StageScene(std::unique_ptr<Backend> b, const Size& size) : backend(std::move(b)) {
+    grid = PixelGrid{size.width, size.height, 0.05f, 0.05f};
+    const std::size_t pixels = std::size_t(size.width) * size.height;
+    std::vector<SpreadCut> host_cuts;
+    const float w_mm = size.width * 0.05f, h_mm = size.height * 0.05f;
+    for (int c = 0; c < cut_count; ++c)
+      host_cuts.push_back({w_mm * (0.15f + 0.1f * c), h_mm * (c % 2 ? 0.4f : 0.6f), 0.15f * h_mm, 0.5f});
+    cuts = backend->allocate(host_cuts.size() * sizeof(SpreadCut));
+    backend->upload(cuts.data(), host_cuts.data(), cuts.bytes());
+    stain = backend->allocate(pixels * sizeof(float));
+    frame = backend->allocate(pixels * 4);
+    tissue = backend->allocate(pixels * 4);
+    const Image texture = procedural_tissue(size.width, size.height, 1);
+    backend->upload(tissue.data(), texture.rgba.data(), tissue.bytes());
+  }
+  void spread() { backend->spread({cuts.as<const SpreadCut>(), cut_count, grid, stain.as<float>()}); }
+  void blend() {
+    backend->blend({tissue.as<const std::uint8_t>(), stain.as<const float>(), grid.width, grid.height,
+                    frame.as<std::uint8_t>()});
+  }
+};
+
+std::unique_ptr<Backend> backend_or_skip(BackendKind kind, benchmark::State& state) {
+  if (kind == BackendKind::cpu) return make_cpu_backend(0);
+  std::string why_not;
+  if (!cuda_device_available(&why_not)) {
+    state.SkipWithError(("CUDA not measured: " + why_not).c_str());
+    return nullptr;
+  }
+  return make_cuda_backend();
+}
+
+void time_stage(benchmark::State& state, BackendKind kind, const Size& size,
+                const std::function<void(StageScene&)>& work) {
+  std::unique_ptr<Backend> backend = backend_or_skip(kind, state);
+  if (!backend) return;
+  StageScene scene(std::move(backend), size);
+  for (int i = 0; i < kWarmUpRuns; ++i) work(scene);
+  double total_ms = 0.0;
+  for (auto _ : state) {
+    const double ms = scene.backend->time_ms([&] { work(scene); });
+    state.SetIterationTime(ms / 1000.0);
+    total_ms += ms;
+  }
+  const double ms = total_ms / double(state.iterations());
+  state.counters["ms"] = ms;
+  state.counters["frame_budget_%"] = 100.0 * ms / kFrameBudgetMs;
+  state.counters["Mpixel/s"] = double(size.width) * size.height / (ms * 1e3);
+  state.SetLabel(scene.backend->device_name());
+}
+
+void register_all() {
+  const std::pair<const char*, std::function<void(StageScene&)>> stages[] = {
+      {"spread", [](StageScene& s) { s.spread(); }},
+      {"blend", [](StageScene& s) { s.blend(); }},
+      {"spread+blend", [](StageScene& s) { s.spread(); s.blend(); }}};
+  for (const BackendKind kind : {BackendKind::cpu, BackendKind::cuda})
+    for (const auto& [stage, work] : stages)
+      for (const Size& size : kSizes) {
+        const std::string name = std::string(to_string(kind)) + "/" + stage + "/" + size.name;
+        benchmark::RegisterBenchmark(name.c_str(), [kind, size, work = work](benchmark::State& state) {
+          time_stage(state, kind, size, work);
+        })
+            ->UseManualTime()
+            ->Unit(benchmark::kMillisecond)
+            ->Repetitions(5)
+            ->ReportAggregatesOnly(true)
+            ->DisplayAggregatesOnly(true);
+      }
+}
+
+}  // namespace
+}  // namespace bleedsim
+
+int main(int argc, char** argv) {
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  bleedsim::register_all();
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,0 +1,29 @@
+#pragma once
+// The bleedsim subcommands. Each returns the process exit code: 0 done, 1 failed while running,
+// 2 bad input (a scenario, texture, option or output path), 130 interrupted.
+#include <optional>
+#include <string>
+
+#include "core/backend.h"
+
+namespace bleedsim::cli {
+
+constexpr int kExitFailed = 1;
+constexpr int kExitBadInput = 2;
+constexpr int kExitInterrupted = 130;
+
+struct RunOptions {
+  std::string scenario;
+  BackendChoice backend;
+  std::optional<std::string> out_dir;  // overrides [output].dir
+  std::optional<int> png_every;        // overrides [output].png_every
+  bool hdf5 = true;
+  bool quiet = false;
+};
+
+int run_command(const RunOptions& options);
+int validate_command(const std::string& scenario);
+int hash_command(const std::string& scenario, const BackendChoice& backend);
+int info_command();
+
+}  // namespace bleedsim::cli

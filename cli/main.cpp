@@ -1,0 +1,83 @@
+// bleedsim: a thin command line over the library (core/simulation.h).
+#include <CLI/CLI.hpp>
+
+#include <exception>
+#include <iostream>
+#include <map>
+
+#include "cli/commands.h"
+#include "core/build_info.h"
+#include "core/input_error.h"
+
+namespace {
+
+using bleedsim::BackendChoice;
+using namespace bleedsim::cli;
+
+void add_backend_options(CLI::App& command, BackendChoice& choice) {
+  const std::map<std::string, BackendChoice::Want> wants = {
+      {"auto", BackendChoice::Want::automatic},
+      {"cpu", BackendChoice::Want::cpu},
+      {"cuda", BackendChoice::Want::cuda}};
+  command.add_option("-b,--backend", choice.want, "auto (CUDA when a device is present), cpu or cuda")
+      ->transform(CLI::CheckedTransformer(wants, CLI::ignore_case))
+      ->default_str("auto");
+  command.add_option("-j,--threads", choice.cpu_threads,
+                     "CPU threads for the cpu backend (0: one per hardware thread)")
+      ->check(CLI::Range(0, 4096))
+      ->default_str("0");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"bleedsim: bleeding effects for endoscopic sinus surgery simulation"};
+  app.set_version_flag("--version", std::string("bleedsim ") + bleedsim::version() + " (" +
+                                        bleedsim::git_sha() + ")");
+  app.require_subcommand(1);
+
+  RunOptions run;
+  CLI::App* run_cmd = app.add_subcommand("run", "run a scenario and write its frames (HDF5, PNG)");
+  run_cmd->add_option("scenario", run.scenario, "scenario file (.toml)")->required();
+  add_backend_options(*run_cmd, run.backend);
+  run_cmd->add_option("-o,--out", run.out_dir, "output folder (default: the scenario's [output].dir)");
+  run_cmd->add_option("--png-every", run.png_every,
+                      "write a PNG of frame 0, every Nth frame and the last (0: none)")
+      ->check(CLI::Range(0, 1000000));
+  run_cmd->add_flag("--no-hdf5{false}", run.hdf5, "do not write frames.h5");
+  run_cmd->add_flag("-q,--quiet", run.quiet, "print nothing but errors");
+
+  std::string validate_path;
+  CLI::App* validate_cmd = app.add_subcommand("validate", "check a scenario and describe it");
+  validate_cmd->add_option("scenario", validate_path, "scenario file (.toml)")->required();
+
+  std::string hash_path;
+  BackendChoice hash_backend;
+  CLI::App* hash_cmd = app.add_subcommand(
+      "hash", "print each frame's per-field FNV-1a 64 hashes (writes no files)");
+  hash_cmd->add_option("scenario", hash_path, "scenario file (.toml)")->required();
+  add_backend_options(*hash_cmd, hash_backend);
+
+  CLI::App* info_cmd = app.add_subcommand("info", "version, build flags and available backends");
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : kExitBadInput;
+  }
+
+  try {
+    if (*run_cmd) return run_command(run);
+    if (*validate_cmd) return validate_command(validate_path);
+    if (*hash_cmd) return hash_command(hash_path, hash_backend);
+    if (*info_cmd) return info_command();
+  } catch (const bleedsim::InputError& e) {
+    std::cerr << "bleedsim: error: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    std::cerr << "bleedsim: failed: " << e.what() << "\n";
+    return kExitFailed;
+  }
+  return kExitFailed;
+}

@@ -1,0 +1,182 @@
+// bleedsim run: a scenario from start to end, frames to HDF5 and PNG as they are made.
+#include <unistd.h>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <filesystem>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "cli/commands.h"
+#include "cli/output_folder.h"
+#include "cli/progress.h"
+#include "core/build_info.h"
+#include "core/hdf5_writer.h"
+#include "core/png_writer.h"
+#include "core/scenario.h"
+#include "core/simulation.h"
+
+namespace bleedsim::cli {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+// Ctrl-C or SIGTERM ends the run after the frame being made: every frame so far stays written.
+// A second signal takes the default action at once.
+std::atomic<bool> interrupted{false};
+
+void on_interrupt(int signal) {
+  interrupted = true;
+  std::signal(signal, SIG_DFL);
+}
+
+struct InterruptGuard {
+  InterruptGuard() {
+    interrupted = false;
+    std::signal(SIGINT, on_interrupt);
+    std::signal(SIGTERM, on_interrupt);
+  }
+  ~InterruptGuard() {
+    std::signal(SIGINT, SIG_DFL);
+    std::signal(SIGTERM, SIG_DFL);
+  }
+};
+
+// The fields a run writes: the frame first (PNGs are made from it), then those [output].fields
+// names, or all when it names none.
+std::vector<FieldLayout> fields_to_write(const Simulation& sim) {
+  const std::vector<std::string>& wanted = sim.scene().output.fields;
+  std::vector<FieldLayout> specs = {*sim.field("frame").field};
+  for (const std::string& name : sim.field_names()) {
+    const bool listed = std::find(wanted.begin(), wanted.end(), name) != wanted.end();
+    if (name != "frame" && (wanted.empty() || listed)) specs.push_back(*sim.field(name).field);
+  }
+  return specs;
+}
+
+std::vector<std::pair<std::string, std::string>> provenance(const Simulation& sim) {
+  const Scene& scene = sim.scene();
+  return {{"bleedsim_version", version()},
+          {"git_sha", git_sha()},
+          {"backend", to_string(sim.backend().kind())},
+          {"device", sim.backend().device_name()},
+          {"build_flags", build_flags()},
+          {"scene_name", scene.name},
+          {"scenario_path", scene.source_path},
+          {"scenario_text", scene.source_text}};
+}
+
+bool png_due(long frame, long frames, int every) {
+  return every > 0 && (frame % every == 0 || frame == frames - 1);
+}
+
+std::string png_name(long frame) {
+  char name[32];
+  std::snprintf(name, sizeof name, "frame_%06ld.png", frame);
+  return name;
+}
+
+// PNGs a previous run left in this folder would mix with this run's.
+void remove_old_pngs(const fs::path& folder) {
+  for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
+    const std::string name = entry.path().filename().string();
+    if (name.rfind("frame_", 0) == 0 && entry.path().extension() == ".png") fs::remove(entry.path());
+  }
+}
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+}  // namespace
+
+int run_command(const RunOptions& options) {
+  Scene scene = load_scenario(options.scenario);
+  if (options.png_every) scene.output.png_every = *options.png_every;
+  const bool dir_from_cli = options.out_dir.has_value();
+  if (dir_from_cli) scene.output.dir = *options.out_dir;
+  const SourcePlace dir_place = dir_from_cli ? SourcePlace{} : scene.place_of("output.dir");
+  const std::string dir_key = dir_from_cli ? "--out" : "output.dir";
+
+  Simulation sim(std::move(scene), options.backend);
+  const Scene& s = sim.scene();
+  const long frames = s.frame_count();
+  const int png_every = s.output.png_every;
+
+  // Everything about the input is checked; only now is anything made on disk.
+  OutputFolder folder(s.output.dir, dir_place, dir_key);
+  const std::vector<FieldLayout> specs = fields_to_write(sim);
+  const fs::path h5_path = folder.path() / "frames.h5";
+  std::unique_ptr<Hdf5FrameWriter> writer;
+  if (options.hdf5) {
+    try {
+      writer = std::make_unique<Hdf5FrameWriter>(h5_path.string(), specs, provenance(sim),
+                                                 s.output.deflate_level);
+    } catch (const std::runtime_error& e) {
+      throw folder.error(e.what());
+    }
+  }
+  fs::path png_folder;
+  if (png_every > 0) {
+    png_folder = folder.subfolder("png");
+    remove_old_pngs(png_folder);
+  }
+  folder.keep();
+
+  if (!options.quiet)
+    std::printf("bleedsim: %s: %ld frames of %d x %d px on %s (%s; %s)\n", s.name.c_str(), frames,
+                s.domain.width_px, s.domain.height_px, to_string(sim.backend().kind()),
+                sim.backend().device_name().c_str(), sim.backend_reason().c_str());
+  std::fflush(stdout);
+
+  std::vector<std::vector<std::uint8_t>> host(specs.size());
+  std::vector<const void*> pointers(specs.size());
+  for (std::size_t f = 0; f < specs.size(); ++f) {
+    host[f].resize(sim.field(specs[f].name).field->bytes());
+    pointers[f] = host[f].data();
+  }
+
+  InterruptGuard guard;
+  Progress progress(frames, !options.quiet && isatty(STDERR_FILENO));
+  const Clock::time_point start = Clock::now();
+  double simulate_s = 0.0;
+  long pngs = 0;
+  for (long k = 0; k < frames && !interrupted; ++k) {
+    const Clock::time_point step_start = Clock::now();
+    sim.step();
+    for (std::size_t f = 0; f < specs.size(); ++f) sim.copy_field(specs[f].name, host[f].data());
+    simulate_s += seconds_since(step_start);
+    if (writer) writer->append(sim.time_s(), pointers);
+    if (png_due(k, frames, png_every)) {
+      write_png_rgba((png_folder / png_name(k)).string(), s.domain.width_px, s.domain.height_px,
+                     host[0].data());
+      ++pngs;
+    }
+    progress.update(k + 1);
+  }
+  progress.clear();
+  const long done = sim.frames_done();
+  if (writer) writer->finish(done == frames);
+  const double wall_s = seconds_since(start);
+
+  std::string wrote = writer ? h5_path.string() : std::string("no HDF5");
+  if (pngs > 0) wrote += " and " + std::to_string(pngs) + " PNGs in " + png_folder.string();
+  if (interrupted) {
+    std::fprintf(stderr, "bleedsim: interrupted after %ld of %ld frames; kept %s\n", done, frames,
+                 wrote.c_str());
+    return kExitInterrupted;
+  }
+  if (!options.quiet)
+    std::printf("bleedsim: %ld frames in %.2f s (%.2f ms/frame, simulation %.2f ms/frame) on %s (%s); wrote %s\n",
+                done, wall_s, 1000.0 * wall_s / double(done), 1000.0 * simulate_s / double(done),
+                to_string(sim.backend().kind()), sim.backend().device_name().c_str(), wrote.c_str());
+  return 0;
+}
+
+}  // namespace bleedsim::cli

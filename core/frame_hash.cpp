@@ -1,0 +1,16 @@
+#include "core/frame_hash.h"
+
+#include "core/hash.h"
+
+namespace bleedsim {
+
+std::vector<std::pair<std::string, std::uint64_t>> hash_fields(const Simulation& simulation) {
+  std::vector<std::pair<std::string, std::uint64_t>> hashes;
+  for (const std::string& name : simulation.field_names()) {
+    const std::vector<std::uint8_t> bytes = simulation.copy_field(name);
+    hashes.emplace_back(name, fnv1a64(bytes.data(), bytes.size()));
+  }
+  return hashes;
+}
+
+}  // namespace bleedsim

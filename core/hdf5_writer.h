@@ -1,0 +1,38 @@
+#pragma once
+// Frames and fields to HDF5 as the run goes (docs/output-format.md).
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/state.h"
+
+namespace bleedsim {
+
+class Hdf5FrameWriter {
+ public:
+  // Writes one dataset per field, named by its path ("frame" → /frame, "spread/stain" →
+  // /spread/stain). Creates `path`.partial; the file takes its final name in finish(). Root attributes are
+  // written as strings (provenance: version, git sha, backend, device, flags, scenario text).
+  Hdf5FrameWriter(const std::string& path, const std::vector<FieldLayout>& fields,
+                  const std::vector<std::pair<std::string, std::string>>& attributes,
+                  int deflate_level);
+  // Unfinished (an exception unwound the run): closes the file and leaves it as .partial.
+  ~Hdf5FrameWriter();
+  Hdf5FrameWriter(const Hdf5FrameWriter&) = delete;
+  Hdf5FrameWriter& operator=(const Hdf5FrameWriter&) = delete;
+
+  // Appends one frame: one host pointer per field, in the order given to the constructor.
+  // Flushes, so a run killed later keeps every frame appended before.
+  void append(double time_s, const std::vector<const void*>& field_data);
+  // Records `complete` and the frame count, closes, and renames to the final path.
+  void finish(bool complete);
+  int frames_written() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace bleedsim

@@ -1,0 +1,361 @@
+#include "core/scenario.h"
+
+#include <toml++/toml.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <initializer_list>
+#include <optional>
+#include <sstream>
+
+#include "core/memory.h"
+#include "core/pipeline.h"
+#include "core/tissue.h"
+
+namespace bleedsim {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Each effect's fields, as [output].fields may name them.
+struct KnownField {
+  const char* name;
+  const char* effect;  // the table that must be present for the field to exist
+};
+const KnownField kFields[] = {{"spread/stain", "spread"}};
+
+constexpr std::int64_t kMaxFrames = 10'000'000;
+
+// The shortest text that reads back as the same double, so "must be at most 16 (got 16.0000001)"
+// never prints as "(got 16)".
+std::string format_number(double value) {
+  char text[32];
+  for (int digits = 6; digits <= 17; ++digits) {
+    std::snprintf(text, sizeof text, "%.*g", digits, value);
+    if (std::strtod(text, nullptr) == value) break;
+  }
+  return text;
+}
+
+const char* kind_of(const toml::node& node) {
+  switch (node.type()) {
+    case toml::node_type::string: return "a string";
+    case toml::node_type::integer: return "an integer";
+    case toml::node_type::floating_point: return "a floating-point number";
+    case toml::node_type::boolean: return "a boolean";
+    case toml::node_type::table: return "a table";
+    case toml::node_type::array: return "an array";
+    default: return "a date or time";
+  }
+}
+
+std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t up = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
+      diagonal = up;
+    }
+  }
+  return row[b.size()];
+}
+
+// An allowed interval for a number; `above` makes the lower end exclusive (sizes must be > 0).
+struct Bounds {
+  double low, high;
+  bool above = false;
+
+  bool contains(double v) const { return (above ? v > low : v >= low) && v <= high; }
+  std::string describe() const {
+    return above ? "greater than " + format_number(low) + " and at most " + format_number(high)
+                 : "between " + format_number(low) + " and " + format_number(high);
+  }
+};
+
+// Reads one scenario's tables: every value checked for type and range, every key's place
+// recorded in the Scene for messages that come later (memory, output folder).
+class Reader {
+ public:
+  Reader(Scene& scene, std::string path) : scene_(scene), path_(std::move(path)) {}
+
+  SourcePlace place(const toml::source_region& region) const {
+    return {path_, int(region.begin.line), int(region.begin.column)};
+  }
+  [[noreturn]] void fail(const toml::source_region& where, const std::string& key,
+                         const std::string& message) const {
+    throw InputError(place(where), key, message);
+  }
+
+  // A sub-table, or null when it is absent. `key` is its dotted path for messages.
+  const toml::table* table(const toml::table& parent, const std::string& name, const std::string& key) {
+    const toml::node* node = parent.get(name);
+    if (!node) return nullptr;
+    if (!node->is_table()) fail(node->source(), key, std::string("expected a table, got ") + kind_of(*node));
+    scene_.places[key] = place(node->source());
+    return node->as_table();
+  }
+
+  // Refuses every key of `t` not in `known`, suggesting the nearest known one.
+  void only_known(const toml::table& t, const std::string& prefix, std::initializer_list<const char*> known) {
+    for (const auto& [key, node] : t) {
+      const std::string name(key.str());
+      if (std::any_of(known.begin(), known.end(), [&](const char* k) { return name == k; })) continue;
+      std::string message = node.is_table() ? "unknown table" : "unknown key";
+      const char* nearest = nullptr;
+      std::size_t best = 3;
+      for (const char* k : known)
+        if (const std::size_t d = edit_distance(name, k); d < best) best = d, nearest = k;
+      if (nearest) message += "; did you mean '" + std::string(nearest) + "'?";
+      else {
+        message += " (known here:";
+        for (const char* k : known) message += std::string(" ") + k;
+        message += ")";
+      }
+      fail(key.source(), prefix.empty() ? name : prefix + "." + name, message);
+    }
+  }
+
+  std::optional<double> number(const toml::table& t, const std::string& prefix, const char* name, Bounds bounds) {
+    const toml::node* node = located(t, prefix, name);
+    if (!node) return std::nullopt;
+    const std::string key = prefix + "." + name;
+    double value;
+    if (const auto i = node->value_exact<std::int64_t>()) value = double(*i);
+    else if (const auto f = node->value_exact<double>()) value = *f;
+    else fail(node->source(), key, std::string("expected a number, got ") + kind_of(*node));
+    if (!std::isfinite(value)) fail(node->source(), key, "must be a finite number (got " + format_number(value) + ")");
+    if (!bounds.contains(value))
+      fail(node->source(), key, "must be " + bounds.describe() + " (got " + format_number(value) + ")");
+    return value;
+  }
+
+  std::optional<std::int64_t> integer(const toml::table& t, const std::string& prefix, const char* name,
+                                      std::int64_t low, std::int64_t high) {
+    const toml::node* node = located(t, prefix, name);
+    if (!node) return std::nullopt;
+    const std::string key = prefix + "." + name;
+    const auto value = node->value_exact<std::int64_t>();
+    if (!value) fail(node->source(), key, std::string("expected an integer, got ") + kind_of(*node));
+    if (*value < low || *value > high)
+      fail(node->source(), key,
+           "must be between " + std::to_string(low) + " and " + std::to_string(high) + " (got " +
+               std::to_string(*value) + ")");
+    return *value;
+  }
+
+  std::optional<std::string> string(const toml::table& t, const std::string& prefix, const char* name) {
+    const toml::node* node = located(t, prefix, name);
+    if (!node) return std::nullopt;
+    const auto value = node->value_exact<std::string>();
+    if (!value) fail(node->source(), prefix + "." + name, std::string("expected a string, got ") + kind_of(*node));
+    return *value;
+  }
+
+  std::optional<bool> boolean(const toml::table& t, const std::string& prefix, const char* name) {
+    const toml::node* node = located(t, prefix, name);
+    if (!node) return std::nullopt;
+    const auto value = node->value_exact<bool>();
+    if (!value) fail(node->source(), prefix + "." + name, std::string("expected true or false, got ") + kind_of(*node));
+    return *value;
+  }
+
+  template <class T>
+  T required(std::optional<T> value, const std::string& table_key, const char* name) const {
+    if (!value) throw InputError(scene_.place_of(table_key), table_key + "." + name, "missing (required)");
+    return *value;
+  }
+
+  const std::string& path() const { return path_; }
+
+ private:
+  const toml::node* located(const toml::table& t, const std::string& prefix, const char* name) {
+    const toml::node* node = t.get(name);
+    if (node) scene_.places[prefix + "." + name] = place(node->source());
+    return node;
+  }
+
+  Scene& scene_;
+  std::string path_;
+};
+
+// A scene's name becomes a folder under out/: no separators, spaces, or "." and "..".
+bool is_folder_name(const std::string& name) {
+  const auto allowed = [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '_' || c == '-';
+  };
+  return !name.empty() && std::isalnum(static_cast<unsigned char>(name[0])) &&
+         std::all_of(name.begin(), name.end(), allowed);
+}
+
+// Without a name key the file's stem names the scene, with anything a folder name cannot hold
+// replaced by '-': "my scene.toml" runs as "my-scene".
+std::string name_from_file(const std::string& path) {
+  std::string name = fs::path(path).stem().string();
+  for (char& c : name)
+    if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '_') c = '-';
+  if (name.empty() || !std::isalnum(static_cast<unsigned char>(name[0]))) name = "scene" + name;
+  return name;
+}
+
+const Bounds kPositiveSize{0.0, 10000.0, true};
+const Bounds kGrowth{0.0, 1000.0, true};
+
+void read_scene_table(Reader& r, const toml::table& root, Scene& scene) {
+  const toml::table* t = r.table(root, "scene", "scene");
+  if (!t) throw InputError(SourcePlace{r.path(), 0, 0}, "scene", "missing the [scene] table (required)");
+  r.only_known(*t, "scene",
+               {"name", "width_px", "height_px", "width_mm", "height_mm", "duration_s", "frame_rate_hz", "seed"});
+  const std::optional<std::string> name = r.string(*t, "scene", "name");
+  scene.name = name ? *name : name_from_file(r.path());
+  if (!is_folder_name(scene.name))
+    throw InputError(scene.place_of("scene.name"), "scene.name",
+                     "'" + scene.name + "' must start with a letter or digit and hold only letters, digits, "
+                     "'.', '_' and '-' (it names the output folder)");
+  scene.domain.width_px = int(r.required(r.integer(*t, "scene", "width_px", 1, 65535), "scene", "width_px"));
+  scene.domain.height_px = int(r.required(r.integer(*t, "scene", "height_px", 1, 65535), "scene", "height_px"));
+  scene.domain.width_mm = r.required(r.number(*t, "scene", "width_mm", kPositiveSize), "scene", "width_mm");
+  scene.domain.height_mm = r.required(r.number(*t, "scene", "height_mm", kPositiveSize), "scene", "height_mm");
+  scene.duration_s = r.required(r.number(*t, "scene", "duration_s", {0.0, 86400.0, true}), "scene", "duration_s");
+  scene.frame_rate_hz = r.number(*t, "scene", "frame_rate_hz", {0.0, 1000.0, true}).value_or(30.0);
+  scene.seed = std::uint64_t(r.integer(*t, "scene", "seed", 0, INT64_MAX).value_or(0));
+  const std::int64_t frames = std::llround(scene.duration_s * scene.frame_rate_hz);
+  if (frames < 1 || frames > kMaxFrames)
+    throw InputError(scene.place_of("scene.duration_s"), "scene.duration_s",
+                     "gives " + std::to_string(frames) + " frames at " + format_number(scene.frame_rate_hz) +
+                         " Hz; a run needs between 1 and " + std::to_string(kMaxFrames));
+}
+
+void read_spread_table(Reader& r, const toml::table& root, Scene& scene) {
+  const toml::table* t = r.table(root, "spread", "spread");
+  if (!t) return;
+  r.only_known(*t, "spread", {"radius_mm", "growth_per_s"});
+  SpreadParams spread;
+  spread.radius_mm = r.number(*t, "spread", "radius_mm", kPositiveSize).value_or(spread.radius_mm);
+  spread.growth_per_s = r.number(*t, "spread", "growth_per_s", kGrowth).value_or(spread.growth_per_s);
+  scene.spread = spread;
+}
+
+void read_cuts(Reader& r, const toml::table& root, Scene& scene) {
+  const toml::node* node = root.get("cut");
+  if (!node) return;
+  // toml++ does not count an empty array as one of tables: "cut = []" is simply no cuts.
+  if (node->is_array() && node->as_array()->empty()) return;
+  if (!node->is_array_of_tables())
+    r.fail(node->source(), "cut", std::string("expected cuts as [[cut]] tables, got ") + kind_of(*node));
+  const SpreadParams defaults = scene.spread.value_or(SpreadParams{});
+  const toml::array& cuts = *node->as_array();
+  for (std::size_t i = 0; i < cuts.size(); ++i) {
+    const toml::table& t = *cuts[i].as_table();
+    const std::string key = "cut[" + std::to_string(i) + "]";
+    scene.places[key] = r.place(t.source());
+    r.only_known(t, key, {"x_mm", "y_mm", "start_s", "radius_mm", "growth_per_s"});
+    Cut cut;
+    cut.x_mm = r.required(r.number(t, key, "x_mm", {0.0, scene.domain.width_mm}), key, "x_mm");
+    cut.y_mm = r.required(r.number(t, key, "y_mm", {0.0, scene.domain.height_mm}), key, "y_mm");
+    cut.start_s = r.number(t, key, "start_s", {0.0, 86400.0}).value_or(0.0);
+    cut.radius_mm = r.number(t, key, "radius_mm", kPositiveSize).value_or(defaults.radius_mm);
+    cut.growth_per_s = r.number(t, key, "growth_per_s", kGrowth).value_or(defaults.growth_per_s);
+    scene.cuts.push_back(cut);
+  }
+}
+
+void read_output_table(Reader& r, const toml::table& root, Scene& scene) {
+  OutputSpec& out = scene.output;
+  out.dir = "out/" + scene.name;
+  const toml::table* t = r.table(root, "output", "output");
+  if (!t) return;
+  r.only_known(*t, "output", {"dir", "hdf5", "png_every", "deflate", "fields"});
+  out.dir = r.string(*t, "output", "dir").value_or(out.dir);
+  if (out.dir.empty()) throw InputError(scene.place_of("output.dir"), "output.dir", "must not be empty");
+  out.hdf5 = r.boolean(*t, "output", "hdf5").value_or(out.hdf5);
+  out.png_every = int(r.integer(*t, "output", "png_every", 0, 1000000).value_or(out.png_every));
+  out.deflate_level = int(r.integer(*t, "output", "deflate", 0, 9).value_or(out.deflate_level));
+  const toml::node* fields = t->get("fields");
+  if (!fields) return;
+  scene.places["output.fields"] = r.place(fields->source());
+  if (!fields->is_array()) r.fail(fields->source(), "output.fields", std::string("expected an array of field names, got ") + kind_of(*fields));
+  const toml::array& names = *fields->as_array();
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    const std::string key = "output.fields[" + std::to_string(i) + "]";
+    const auto name = names[i].value_exact<std::string>();
+    if (!name) r.fail(names[i].source(), key, std::string("expected a field name, got ") + kind_of(names[i]));
+    const auto known = std::find_if(std::begin(kFields), std::end(kFields), [&](const KnownField& f) { return *name == f.name; });
+    if (known == std::end(kFields)) r.fail(names[i].source(), key, "unknown field '" + *name + "' (known: spread/stain)");
+    if (!root.contains(known->effect))
+      r.fail(names[i].source(), key, "'" + *name + "' needs the [" + known->effect + "] effect, which this scene does not declare");
+    if (std::find(out.fields.begin(), out.fields.end(), *name) != out.fields.end())
+      r.fail(names[i].source(), key, "'" + *name + "' is listed twice");
+    out.fields.push_back(*name);
+  }
+}
+
+// The tissue comes last: it is the one large allocation, made only once the scene is known to fit.
+void read_tissue(Reader& r, const toml::table& root, Scene& scene) {
+  const toml::table* t = r.table(root, "tissue", "tissue");
+  std::optional<std::string> texture;
+  if (t) {
+    r.only_known(*t, "tissue", {"texture"});
+    texture = r.string(*t, "tissue", "texture");
+  }
+  const std::size_t tissue_bytes = std::size_t(scene.domain.pixel_count()) * 4;
+  require_room(scene, tissue_bytes + Pipeline::backend_bytes(scene), available_host_memory(), "host");
+  if (!texture) {
+    scene.tissue = procedural_tissue(scene.domain.width_px, scene.domain.height_px, scene.seed);
+    scene.tissue_source = "procedural";
+    return;
+  }
+  fs::path file = *texture;
+  if (file.is_relative()) file = fs::path(r.path()).parent_path() / file;
+  scene.tissue_source = file.lexically_normal().string();
+  scene.tissue = load_tissue_png(scene.tissue_source, scene.domain.width_px, scene.domain.height_px,
+                                 scene.place_of("tissue.texture"), "tissue.texture");
+}
+
+}  // namespace
+
+Scene parse_scenario(const std::string& text, const std::string& path) {
+  toml::table root;
+  try {
+    root = toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    const auto& begin = e.source().begin;
+    throw InputError(SourcePlace{path, int(begin.line), int(begin.column)}, "", std::string(e.description()));
+  }
+  Scene scene;
+  scene.source_path = path;
+  scene.source_text = text;
+  Reader reader(scene, path);
+  reader.only_known(root, "", {"scene", "tissue", "spread", "cut", "output"});
+  read_scene_table(reader, root, scene);
+  read_spread_table(reader, root, scene);
+  read_cuts(reader, root, scene);
+  read_output_table(reader, root, scene);
+  read_tissue(reader, root, scene);
+  return scene;
+}
+
+Scene load_scenario(const std::string& path) {
+  const SourcePlace file{path, 0, 0};
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw InputError(file, "", "cannot read scenario file: it is a folder");
+  errno = 0;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(file, "", std::string("cannot read scenario file: ") + std::strerror(errno ? errno : ENOENT));
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_scenario(text.str(), path);
+}
+
+}  // namespace bleedsim

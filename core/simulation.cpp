@@ -1,0 +1,89 @@
+#include "core/simulation.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "core/memory.h"
+
+namespace bleedsim {
+namespace {
+
+void check_consistent(const Scene& scene) {
+  const Domain& d = scene.domain;
+  if (d.width_px <= 0 || d.height_px <= 0 || !(d.width_mm > 0) || !(d.height_mm > 0))
+    throw std::invalid_argument("scene domain must have positive sizes in pixels and mm");
+  if (!(scene.frame_rate_hz > 0) || !std::isfinite(scene.frame_rate_hz))
+    throw std::invalid_argument("scene frame rate must be positive and finite");
+  if (scene.tissue.width != d.width_px || scene.tissue.height != d.height_px ||
+      scene.tissue.rgba.size() != std::size_t(d.pixel_count()) * 4)
+    throw std::invalid_argument("scene tissue must be a width_px × height_px RGBA8 image");
+}
+
+// The fields must fit where the backend computes, and a host copy of them must fit for reading
+// frames out. Checked before anything is allocated, so a too-large scene fails at once.
+void check_fits(const Scene& scene, const Backend& backend) {
+  const std::size_t on_backend = Pipeline::backend_bytes(scene);
+  if (backend.kind() == BackendKind::cpu) {
+    require_room(scene, 2 * on_backend, available_host_memory(), "host");
+  } else {
+    require_room(scene, on_backend, backend.memory_available(), "device");
+    require_room(scene, on_backend, available_host_memory(), "host");
+  }
+}
+
+}  // namespace
+
+Simulation::Simulation(Scene scene, const BackendChoice& choice) : scene_(std::move(scene)) {
+  check_consistent(scene_);
+  SelectedBackend selected = select_backend(choice);
+  backend_ = std::move(selected.backend);
+  backend_reason_ = std::move(selected.why);
+  check_fits(scene_, *backend_);
+  state_.cuts = scene_.cuts;
+  pipeline_ = std::make_unique<Pipeline>(scene_, state_, *backend_);
+}
+
+Simulation::~Simulation() = default;
+
+void Simulation::add_cut(const Cut& cut) {
+  if (!std::isfinite(cut.x_mm) || !std::isfinite(cut.y_mm) || !std::isfinite(cut.start_s) ||
+      !std::isfinite(cut.radius_mm) || !std::isfinite(cut.growth_per_s))
+    throw std::invalid_argument("a cut's position, start, radius and growth must be finite");
+  if (!(cut.radius_mm > 0) || !(cut.growth_per_s > 0))
+    throw std::invalid_argument("a cut's radius and growth rate must be positive");
+  state_.cuts.push_back(cut);
+}
+
+void Simulation::step() {
+  pipeline_->run_frame(scene_, state_, *backend_);
+  ++state_.frames_done;
+}
+
+double Simulation::time_s() const {
+  return state_.frames_done == 0 ? 0.0 : scene_.frame_time_s(state_.frames_done - 1);
+}
+
+std::vector<std::string> Simulation::field_names() const {
+  std::vector<std::string> names;
+  for (const Field& field : state_.fields) names.push_back(field.name);
+  return names;
+}
+
+FieldView Simulation::field(const std::string& name) const {
+  const Field* found = state_.find(name);
+  if (!found) throw std::out_of_range("this scene has no field '" + name + "'");
+  return FieldView{found, found->data.data(), backend_->kind()};
+}
+
+std::vector<std::uint8_t> Simulation::copy_field(const std::string& name) const {
+  std::vector<std::uint8_t> bytes(field(name).field->bytes());
+  copy_field(name, bytes.data());
+  return bytes;
+}
+
+void Simulation::copy_field(const std::string& name, void* host_destination) const {
+  const FieldView view = field(name);
+  backend_->download(host_destination, view.data, view.field->bytes());
+}
+
+}  // namespace bleedsim

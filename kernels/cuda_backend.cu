@@ -1,0 +1,115 @@
+// The CUDA backend: device memory, and launches of the stage kernels in this folder.
+#include <cuda_runtime.h>
+
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+
+#include "core/backend.h"
+#include "kernels/cuda_check.h"
+
+namespace bleedsim {
+
+void cuda_check(cudaError_t status, const char* call, const char* file, int line) {
+  if (status == cudaSuccess) return;
+  throw std::runtime_error(std::string(call) + " failed at " + file + ":" + std::to_string(line) +
+                           ": " + cudaGetErrorName(status) + " (" + cudaGetErrorString(status) + ")");
+}
+
+void check_launch(const char* kernel) {
+  const cudaError_t status = cudaGetLastError();
+  if (status != cudaSuccess)
+    throw std::runtime_error(std::string("launch of ") + kernel + " failed: " +
+                             cudaGetErrorName(status) + " (" + cudaGetErrorString(status) + ")");
+}
+
+namespace {
+
+class CudaEvent {
+ public:
+  CudaEvent() { BLEEDSIM_CUDA_CHECK(cudaEventCreate(&event_)); }
+  ~CudaEvent() { cudaEventDestroy(event_); }
+  CudaEvent(const CudaEvent&) = delete;
+  CudaEvent& operator=(const CudaEvent&) = delete;
+  cudaEvent_t get() const { return event_; }
+
+ private:
+  cudaEvent_t event_{};
+};
+
+class CudaBackend final : public Backend {
+ public:
+  CudaBackend() {
+    BLEEDSIM_CUDA_CHECK(cudaGetDevice(&device_));
+    BLEEDSIM_CUDA_CHECK(cudaGetDeviceProperties(&properties_, device_));
+  }
+
+  BackendKind kind() const override { return BackendKind::cuda; }
+  std::string device_name() const override {
+    char text[320];
+    std::snprintf(text, sizeof text, "%s (sm_%d%d, %.0f GiB)", properties_.name, properties_.major,
+                  properties_.minor, properties_.totalGlobalMem / 1073741824.0);
+    return text;
+  }
+  void upload(void* dst, const void* src, std::size_t bytes) override {
+    BLEEDSIM_CUDA_CHECK(cudaMemcpy(dst, src, bytes, cudaMemcpyHostToDevice));
+  }
+  void download(void* dst, const void* src, std::size_t bytes) override {
+    BLEEDSIM_CUDA_CHECK(cudaMemcpy(dst, src, bytes, cudaMemcpyDeviceToHost));
+  }
+  void synchronize() override { BLEEDSIM_CUDA_CHECK(cudaDeviceSynchronize()); }
+  std::size_t memory_available() const override {
+    std::size_t free_bytes = 0, total_bytes = 0;
+    BLEEDSIM_CUDA_CHECK(cudaMemGetInfo(&free_bytes, &total_bytes));
+    return free_bytes;
+  }
+  double time_ms(const std::function<void()>& work) override {
+    CudaEvent start, stop;
+    BLEEDSIM_CUDA_CHECK(cudaEventRecord(start.get()));
+    work();
+    BLEEDSIM_CUDA_CHECK(cudaEventRecord(stop.get()));
+    BLEEDSIM_CUDA_CHECK(cudaEventSynchronize(stop.get()));
+    float ms = 0.0f;
+    BLEEDSIM_CUDA_CHECK(cudaEventElapsedTime(&ms, start.get(), stop.get()));
+    return ms;
+  }
+
+ protected:
+  void* allocate_raw(std::size_t bytes) override {
+    void* data = nullptr;
+    BLEEDSIM_CUDA_CHECK(cudaMalloc(&data, bytes));
+    return data;
+  }
+  void release_raw(void* data) override { cudaFree(data); }
+  void run_spread(const SpreadArgs& args) override { spread_cuda(args); }
+  void run_blend(const BlendArgs& args) override { blend_cuda(args); }
+
+ private:
+  int device_ = 0;
+  cudaDeviceProp properties_{};
+};
+
+}  // namespace
+
+std::unique_ptr<Backend> make_cuda_backend() { return std::make_unique<CudaBackend>(); }
+
+bool cuda_device_available(std::string* why_not) {
+  int count = 0;
+  const cudaError_t status = cudaGetDeviceCount(&count);
+  if (status != cudaSuccess) {
+    // The static runtime reports a machine with no NVIDIA driver at all as an insufficient one.
+    const char* meaning = status == cudaErrorInsufficientDriver
+                              ? "no NVIDIA driver, or one older than this build's CUDA runtime"
+                              : cudaGetErrorString(status);
+    *why_not = std::string("no usable CUDA device (") + cudaGetErrorName(status) + ": " + meaning + ")";
+    cudaGetLastError();  // clear the error so later calls start clean
+    return false;
+  }
+  if (count == 0) {
+    *why_not = "no CUDA device";
+    return false;
+  }
+  return true;
+}
+
+}  // namespace bleedsim

@@ -1,0 +1,18 @@
+// A build without nvcc has no CUDA backend; it says so instead of failing to link.
+#include <stdexcept>
+
+#include "core/backend.h"
+
+namespace bleedsim {
+namespace {
+const char* const kNoCuda = "this build has no CUDA backend (nvcc was not found when it was configured)";
+}
+
+std::unique_ptr<Backend> make_cuda_backend() { throw std::runtime_error(kNoCuda); }
+
+bool cuda_device_available(std::string* why_not) {
+  *why_not = kNoCuda;
+  return false;
+}
+
+}  // namespace bleedsim

@@ -1,0 +1,19 @@
+#include "core/blend.h"
+
+#include <cstddef>
+
+#include "reference_cpu/parallel_rows.h"
+
+namespace bleedsim {
+
+void blend_cpu(const BlendArgs& args, int threads) {
+  parallel_rows(args.height, threads, [&](int j) {
+    for (int i = 0; i < args.width; ++i) {
+      const std::size_t p = std::size_t(j) * args.width + i;
+      blend_pixel(args.tissue_rgba + 4 * p, args.stain ? args.stain[p] : 0.0f,
+                  args.frame_rgba + 4 * p);
+    }
+  });
+}
+
+}  // namespace bleedsim

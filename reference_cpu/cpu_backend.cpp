@@ -1,0 +1,62 @@
+// The CPU reference backend: host memory, and the stage loops in this folder.
+#include <chrono>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <new>
+#include <string>
+#include <thread>
+
+#include "core/backend.h"
+#include "core/memory.h"
+
+namespace bleedsim {
+namespace {
+
+std::string cpu_model() {
+  std::ifstream cpuinfo("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(cpuinfo, line))
+    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+  return "unknown CPU";
+}
+
+class CpuBackend final : public Backend {
+ public:
+  explicit CpuBackend(int threads)
+      : threads_(threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()))) {}
+
+  BackendKind kind() const override { return BackendKind::cpu; }
+  std::string device_name() const override {
+    return cpu_model() + ", " + std::to_string(threads_) + (threads_ == 1 ? " thread" : " threads");
+  }
+  void upload(void* dst, const void* src, std::size_t bytes) override { std::memcpy(dst, src, bytes); }
+  void download(void* dst, const void* src, std::size_t bytes) override { std::memcpy(dst, src, bytes); }
+  void synchronize() override {}
+  std::size_t memory_available() const override { return available_host_memory(); }
+  double time_ms(const std::function<void()>& work) override {
+    const auto start = std::chrono::steady_clock::now();
+    work();
+    return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  }
+
+ protected:
+  void* allocate_raw(std::size_t bytes) override {
+    constexpr std::size_t kAlign = 64;
+    void* data = std::aligned_alloc(kAlign, (bytes + kAlign - 1) / kAlign * kAlign);
+    if (!data) throw std::bad_alloc();
+    return data;
+  }
+  void release_raw(void* data) override { std::free(data); }
+  void run_spread(const SpreadArgs& args) override { spread_cpu(args, threads_); }
+  void run_blend(const BlendArgs& args) override { blend_cpu(args, threads_); }
+
+ private:
+  int threads_;
+};
+
+}  // namespace
+
+std::unique_ptr<Backend> make_cpu_backend(int threads) { return std::make_unique<CpuBackend>(threads); }
+
+}  // namespace bleedsim

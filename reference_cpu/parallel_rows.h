@@ -1,0 +1,27 @@
+#pragma once
+#include <algorithm>
+#include <cstdint>
+#include <thread>
+#include <vector>
+
+namespace bleedsim {
+
+// Runs row_fn(j) for every row j in [0, rows), in contiguous bands over `threads` threads (the
+// caller's thread takes the first band). Each row is written by exactly one thread and depends on
+// no other row, so the bytes do not depend on the thread count.
+template <class RowFn>
+void parallel_rows(int rows, int threads, const RowFn& row_fn) {
+  const int bands = std::max(1, std::min(threads, rows));
+  const auto run_band = [&](int band) {
+    const int first = int(std::int64_t(rows) * band / bands);
+    const int last = int(std::int64_t(rows) * (band + 1) / bands);
+    for (int j = first; j < last; ++j) row_fn(j);
+  };
+  std::vector<std::thread> helpers;
+  helpers.reserve(bands - 1);
+  for (int band = 1; band < bands; ++band) helpers.emplace_back(run_band, band);
+  run_band(0);
+  for (std::thread& helper : helpers) helper.join();
+}
+
+}  // namespace bleedsim

@@ -1,0 +1,166 @@
+#!/usr/bin/python3
+"""Checks a bleedsim HDF5 output file the way a user sees it through h5py.
+
+    /usr/bin/python3 tests/check_hdf5_layout.py FILE [--frames N] [--fields a,b]
+                                                [--width W --height H]
+
+The layout is docs/output-format.md. Prints one line per failed check and exits 1 on any
+failure; otherwise prints a one-line summary and exits 0. Needs h5py and numpy (Debian's
+python3-h5py installs them for /usr/bin/python3).
+"""
+import argparse
+import sys
+
+import h5py
+import numpy as np
+
+PROVENANCE = ("bleedsim_version", "git_sha", "backend", "device", "build_flags", "scenario_text")
+FRAME_IMAGE_ATTRIBUTES = {"CLASS": "IMAGE", "IMAGE_VERSION": "1.2",
+                          "IMAGE_SUBCLASS": "IMAGE_TRUECOLOR", "INTERLACE_MODE": "INTERLACE_PIXEL"}
+
+
+class Checker:
+    def __init__(self):
+        self.failures = []
+
+    def expect(self, condition, message):
+        if not condition:
+            self.failures.append(message)
+        return condition
+
+
+def text(value):
+    """An attribute as str: variable-length strings come back as str, fixed-length as bytes."""
+    if isinstance(value, (bytes, np.bytes_)):
+        return value.decode("ascii", errors="replace")
+    return value if isinstance(value, str) else None
+
+
+def dataset(check, file, path):
+    node = file.get(path)
+    if not check.expect(isinstance(node, h5py.Dataset), f"{path}: missing (or not a dataset)"):
+        return None
+    return node
+
+
+def check_text_attribute(check, node, name, nonempty=True):
+    value = text(node.attrs.get(name))
+    if not check.expect(value is not None, f"{node.name}: attribute {name} missing or not text"):
+        return
+    if nonempty:
+        check.expect(value != "", f"{node.name}: attribute {name} is empty")
+
+
+def check_frame_chunks_and_filters(check, node):
+    """Each frame one chunk, compressed with shuffle + gzip (any level the run chose)."""
+    expected_chunks = (1,) + node.shape[1:]
+    check.expect(node.chunks == expected_chunks,
+                 f"{node.name}: chunks {node.chunks}, expected {expected_chunks}")
+    check.expect(node.compression == "gzip",
+                 f"{node.name}: compression {node.compression!r}, expected 'gzip'")
+    check.expect(node.shuffle, f"{node.name}: no shuffle filter")
+    check.expect(node.maxshape[0] is None, f"{node.name}: cannot grow along time")
+
+
+def check_frame(check, file, args):
+    """/frame: (T, H, W, 4) uint8, an image HDFView can show. Returns T, H, W."""
+    frame = dataset(check, file, "/frame")
+    if frame is None:
+        return None
+    if not check.expect(frame.ndim == 4 and frame.shape[3] == 4,
+                        f"/frame: shape {frame.shape}, expected (T, H, W, 4)"):
+        return None
+    check.expect(frame.dtype == np.uint8, f"/frame: type {frame.dtype}, expected uint8")
+    for name, expected in FRAME_IMAGE_ATTRIBUTES.items():
+        value = text(frame.attrs.get(name))
+        check.expect(value == expected, f"/frame: attribute {name} is {value!r}, expected {expected!r}")
+    check_frame_chunks_and_filters(check, frame)
+
+    frames, height, width = frame.shape[:3]
+    for given, actual, what in ((args.frames, frames, "frames"), (args.height, height, "height"),
+                                (args.width, width, "width")):
+        if given is not None:
+            check.expect(given == actual, f"/frame: {actual} {what}, expected {given}")
+    return frames, height, width
+
+
+def check_time(check, file, frames):
+    time = dataset(check, file, "/time")
+    if time is None:
+        return
+    if not check.expect(time.ndim == 1 and time.dtype == np.float64,
+                        f"/time: {time.dtype} {time.shape}, expected float64 (T,)"):
+        return
+    if frames is not None:
+        check.expect(time.shape[0] == frames, f"/time: {time.shape[0]} entries for {frames} frames")
+    check.expect(text(time.attrs.get("unit")) == "s",
+                 f"/time: unit {time.attrs.get('unit')!r}, expected 's'")
+    values = time[()]
+    check.expect(bool(np.all(np.diff(values) > 0)), "/time: not strictly increasing")
+
+
+def check_field(check, file, name, shape):
+    node = dataset(check, file, "/" + name)
+    if node is None:
+        return
+    check.expect(node.dtype == np.float32, f"{node.name}: type {node.dtype}, expected float32")
+    if shape is not None:
+        check.expect(node.shape == shape, f"{node.name}: shape {node.shape}, expected {shape}")
+    elif not check.expect(node.ndim == 3, f"{node.name}: shape {node.shape}, expected (T, H, W)"):
+        return
+    check_text_attribute(check, node, "unit", nonempty=False)  # "" is a fine unit for a count
+    check_text_attribute(check, node, "description")
+    check_frame_chunks_and_filters(check, node)
+
+
+def check_root(check, file, frames):
+    for name in PROVENANCE:
+        check_text_attribute(check, file["/"], name)
+    complete = file.attrs.get("complete")
+    check.expect(complete is not None and int(complete) == 1, f"/: complete is {complete!r}, expected 1")
+    written = file.attrs.get("frames_written")
+    if frames is not None:
+        check.expect(written is not None and int(written) == frames,
+                     f"/: frames_written is {written!r}, but /frame holds {frames} frames")
+
+
+def check_file(path, args):
+    check = Checker()
+    try:
+        file = h5py.File(path, "r")
+    except OSError as error:
+        return [f"{path}: cannot open as HDF5 ({error})"], None
+    with file:
+        shape = check_frame(check, file, args)
+        frames = shape[0] if shape else None
+        check_time(check, file, frames)
+        for field in args.fields:
+            check_field(check, file, field, shape)
+        check_root(check, file, frames)
+    return check.failures, shape
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("file")
+    parser.add_argument("--frames", type=int, help="expected number of frames")
+    parser.add_argument("--fields", default="",
+                        help="comma-separated fields expected besides /frame, e.g. spread/stain")
+    parser.add_argument("--width", type=int, help="expected frame width in pixels")
+    parser.add_argument("--height", type=int, help="expected frame height in pixels")
+    args = parser.parse_args()
+    args.fields = [field.strip("/") for field in args.fields.split(",") if field.strip()]
+
+    failures, shape = check_file(args.file, args)
+    for failure in failures:
+        print(f"FAIL {failure}")
+    if failures:
+        return 1
+    frames, height, width = shape
+    fields = ", ".join(args.fields) if args.fields else "no fields"
+    print(f"OK {args.file}: {frames} frames of {width}x{height}, {fields}")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

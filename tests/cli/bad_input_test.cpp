@@ -1,0 +1,137 @@
+// Bad input is a feature: each kind gives a message naming the file, line and key, exit code 2,
+// and leaves no output behind.
+#include <filesystem>
+#include <string>
+
+#include "tests/cli/cli_harness.h"
+
+namespace bleedsim::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+// A valid scenario with one line replaced or added; `line` 0 appends.
+std::string scenario_with(const std::string& replace, const std::string& by) {
+  std::string text =
+      "[scene]\n"              // line 1
+      "width_px = 64\n"        // 2
+      "height_px = 48\n"       // 3
+      "width_mm = 16.0\n"      // 4
+      "height_mm = 12.0\n"     // 5
+      "duration_s = 0.2\n"     // 6
+      "[spread]\n"             // 7
+      "[[cut]]\n"              // 8
+      "x_mm = 8.0\n"           // 9
+      "y_mm = 6.0\n";          // 10
+  if (!replace.empty()) {
+    const std::size_t at = text.find(replace);
+    EXPECT_NE(at, std::string::npos) << replace;
+    text.replace(at, replace.size(), by);
+  } else {
+    text += by;
+  }
+  return text;
+}
+
+class BadInput : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = scratch_folder();
+    out_ = dir_ / "out";
+  }
+  // Runs `bleedsim run` on the text; expects exit 2, each of `expected` in the message, no output.
+  void expect_refused(const std::string& text, const std::vector<std::string>& expected,
+                      const std::string& extra_arguments = "", const std::string& shell_prefix = "") {
+    const fs::path file = dir_ / "bad.toml";
+    write_text(file, text);
+    expect_cli_refused("run '" + file.string() + "' --backend cpu --png-every 1 --out '" + out_.string() +
+                           "' " + extra_arguments,
+                       expected, shell_prefix);
+  }
+  void expect_cli_refused(const std::string& arguments, const std::vector<std::string>& expected,
+                          const std::string& shell_prefix = "") {
+    const CliResult result = run_cli(arguments, shell_prefix);
+    EXPECT_EQ(result.exit_code, 2) << result.output;
+    for (const std::string& part : expected)
+      EXPECT_NE(result.output.find(part), std::string::npos) << "missing '" << part << "' in: " << result.output;
+    EXPECT_FALSE(fs::exists(out_)) << "bad input left " << out_;
+  }
+  fs::path dir_, out_;
+};
+
+TEST_F(BadInput, MissingScenarioFile) {
+  expect_cli_refused("run '" + (dir_ / "nowhere.toml").string() + "' --out '" + out_.string() + "'",
+                     {"nowhere.toml", "cannot read scenario file", "No such file"});
+}
+
+TEST_F(BadInput, MalformedToml) {
+  expect_refused(scenario_with("[spread]", "[spread"), {"bad.toml:7:"});
+}
+
+TEST_F(BadInput, UnknownKey) {
+  expect_refused(scenario_with("height_px = 48", "hieght_px = 48"),
+                 {"bad.toml:3:", "scene.hieght_px", "unknown", "height_px"});
+}
+
+TEST_F(BadInput, WrongType) {
+  expect_refused(scenario_with("width_px = 64", "width_px = \"wide\""), {"bad.toml:2:", "scene.width_px", "integer"});
+}
+
+TEST_F(BadInput, NegativeSize) {
+  expect_refused(scenario_with("width_mm = 16.0", "width_mm = -16.0"), {"bad.toml:4:", "scene.width_mm", "-16"});
+}
+
+TEST_F(BadInput, ZeroSize) {
+  expect_refused(scenario_with("height_px = 48", "height_px = 0"), {"bad.toml:3:", "scene.height_px", "got 0"});
+}
+
+TEST_F(BadInput, SizeTooLargeForMemory) {
+  // 40000 x 40000 px needs tens of GiB; the address space is capped at 4 GB so the test means the
+  // same on every machine.
+  expect_refused(scenario_with("width_px = 64\nheight_px = 48", "width_px = 40000\nheight_px = 40000"),
+                 {"bad.toml:2:", "scene.width_px", "memory"}, "", "ulimit -v 4000000;");
+}
+
+TEST_F(BadInput, MissingTissuePng) {
+  expect_refused(scenario_with("", "[tissue]\ntexture = \"no-such.png\"\n"),
+                 {"bad.toml:12:", "tissue.texture", "no-such.png"});
+}
+
+TEST_F(BadInput, TissueFileThatIsNotAPng) {
+  write_text(dir_ / "junk.png", "this is not a PNG");
+  expect_refused(scenario_with("", "[tissue]\ntexture = \"junk.png\"\n"), {"bad.toml:12:", "tissue.texture", "junk.png"});
+}
+
+TEST_F(BadInput, UnwritableOutputPathFromTheCommandLine) {
+  write_text(dir_ / "a-file", "");
+  out_ = dir_ / "a-file" / "out";
+  expect_refused(scenario_with("", ""), {"--out", "cannot create output folder", "a-file"});
+}
+
+TEST_F(BadInput, UnwritableOutputPathFromTheScenario) {
+  write_text(dir_ / "a-file", "");
+  const fs::path file = dir_ / "bad.toml";
+  write_text(file, scenario_with("", "[output]\ndir = \"" + (dir_ / "a-file" / "out").string() + "\"\n"));
+  const CliResult result = run_cli("run '" + file.string() + "' --backend cpu");
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  EXPECT_NE(result.output.find("bad.toml:12:"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("output.dir"), std::string::npos) << result.output;
+  EXPECT_FALSE(fs::exists(dir_ / "a-file" / "out"));
+}
+
+TEST_F(BadInput, UnknownBackendOrNegativePngInterval) {
+  const std::string file = (fs::path(source_dir()) / "scenarios/golden/spread-single.toml").string();
+  expect_cli_refused("run '" + file + "' --backend gpu --out '" + out_.string() + "'", {"--backend", "gpu"});
+  expect_cli_refused("run '" + file + "' --png-every -1 --out '" + out_.string() + "'", {"--png-every"});
+}
+
+TEST_F(BadInput, ValidateRefusesTooWithTheSameMessage) {
+  const fs::path file = dir_ / "bad.toml";
+  write_text(file, scenario_with("height_px = 48", "height_px = 0"));
+  const CliResult result = run_cli("validate '" + file.string() + "'");
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_NE(result.output.find("bad.toml:3:"), std::string::npos) << result.output;
+}
+
+}  // namespace
+}  // namespace bleedsim::test

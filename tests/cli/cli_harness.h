@@ -1,0 +1,57 @@
+#pragma once
+// Runs the bleedsim CLI as a user would, in a scratch folder of its own per test.
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "tests/test_paths.h"
+
+namespace bleedsim::test {
+
+struct CliResult {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr together
+};
+
+// `shell_prefix` runs before the CLI in the same shell (e.g. "ulimit -v 4000000;").
+inline CliResult run_shell(const std::string& command) {
+  CliResult result;
+  FILE* pipe = popen(("(" + command + ") 2>&1").c_str(), "r");
+  if (!pipe) return result;
+  std::array<char, 4096> chunk;
+  while (std::size_t n = std::fread(chunk.data(), 1, chunk.size(), pipe)) result.output.append(chunk.data(), n);
+  const int status = pclose(pipe);
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
+  return result;
+}
+
+inline CliResult run_cli(const std::string& arguments, const std::string& shell_prefix = "") {
+  return run_shell(shell_prefix + " '" + cli_path() + "' " + arguments);
+}
+
+// A fresh, empty folder for the running test.
+inline std::filesystem::path scratch_folder() {
+  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+  const std::filesystem::path dir =
+      std::filesystem::path(binary_dir()) / "test-scratch" / info->test_suite_name() / info->name();
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+inline void write_text(const std::filesystem::path& path, const std::string& text) {
+  std::ofstream(path) << text;
+}
+
+inline std::string read_bytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), {});
+}
+
+}  // namespace bleedsim::test

@@ -1,0 +1,138 @@
+// bleedsim run / hash / validate end to end, as a user runs them.
+#include <hdf5.h>
+
+#include <filesystem>
+#include <string>
+
+#include "core/backend.h"
+#include "tests/cli/cli_harness.h"
+
+namespace bleedsim::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string scenario(const std::string& name) { return (fs::path(source_dir()) / "scenarios" / name).string(); }
+
+std::vector<std::string> files_in(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+long long int_attribute(const fs::path& file, const char* name) {
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  const hid_t a = H5Aopen(f, name, H5P_DEFAULT);
+  long long value = -1;
+  H5Aread(a, H5T_NATIVE_LLONG, &value);
+  H5Aclose(a);
+  H5Fclose(f);
+  return value;
+}
+
+TEST(Run, WritesHdf5AndPngsAndSaysWhere) {
+  const fs::path out = scratch_folder() / "out";
+  const CliResult result =
+      run_cli("run '" + scenario("golden/spread-single.toml") + "' --backend cpu --png-every 10 --out '" + out.string() + "'");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("45 frames in"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find((out / "frames.h5").string()), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("6 PNGs in"), std::string::npos) << result.output;
+  EXPECT_EQ(files_in(out), std::vector<std::string>({"frames.h5", "png"}));
+  EXPECT_EQ(files_in(out / "png"),
+            std::vector<std::string>({"frame_000000.png", "frame_000010.png", "frame_000020.png",
+                                      "frame_000030.png", "frame_000040.png", "frame_000044.png"}));
+  // The file as h5py sees it (an independent reader): layout, chunks, filters, provenance.
+  const CliResult check = run_shell("'" + python() + "' '" + source_dir() + "/tests/check_hdf5_layout.py' '" +
+                                    (out / "frames.h5").string() +
+                                    "' --frames 45 --width 160 --height 120 --fields spread/stain");
+  EXPECT_EQ(check.exit_code, 0) << check.output;
+}
+
+TEST(Run, TheSameSceneTwiceGivesByteIdenticalFiles) {
+  const fs::path dir = scratch_folder();
+  for (const char* name : {"a", "b"}) {
+    const CliResult result = run_cli("run '" + scenario("golden/spread-overlap.toml") +
+                                     "' --backend cpu --png-every 15 -q --out '" + (dir / name).string() + "'");
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+    EXPECT_EQ(result.output, "") << "--quiet printed something";
+  }
+  EXPECT_EQ(read_bytes(dir / "a/frames.h5"), read_bytes(dir / "b/frames.h5"));
+  for (const std::string& png : files_in(dir / "a/png"))
+    EXPECT_EQ(read_bytes(dir / "a/png" / png), read_bytes(dir / "b/png" / png)) << png;
+}
+
+TEST(Run, ThreadCountsGiveTheSameHashes) {
+  const CliResult one = run_cli("hash '" + scenario("default.toml") + "' --backend cpu --threads 1");
+  const CliResult seven = run_cli("hash '" + scenario("default.toml") + "' --backend cpu --threads 7");
+  ASSERT_EQ(one.exit_code, 0) << one.output;
+  ASSERT_EQ(seven.exit_code, 0) << seven.output;
+  const auto hashes = [](const std::string& output) { return output.substr(output.find('\n') + 1); };
+  EXPECT_NE(hashes(one.output).find("run "), std::string::npos);
+  EXPECT_EQ(hashes(one.output), hashes(seven.output));
+}
+
+TEST(Run, ASceneWithoutTheSpreadWritesNoSpreadField) {
+  const fs::path out = scratch_folder() / "out";
+  const CliResult result = run_cli("run '" + scenario("tissue-only.toml") + "' --backend cpu -q --out '" + out.string() + "'");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  const CliResult check = run_shell("'" + python() + "' '" + source_dir() + "/tests/check_hdf5_layout.py' '" +
+                                    (out / "frames.h5").string() + "' --fields ''");
+  EXPECT_EQ(check.exit_code, 0) << check.output;
+  const hid_t file = H5Fopen((out / "frames.h5").c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  EXPECT_LE(H5Lexists(file, "/spread", H5P_DEFAULT), 0);
+  H5Fclose(file);
+}
+
+TEST(Run, AnInterruptedRunKeepsEveryFrameItFinished) {
+  const fs::path dir = scratch_folder();
+  write_text(dir / "long.toml",
+             "[scene]\nwidth_px = 1024\nheight_px = 768\nwidth_mm = 32\nheight_mm = 24\nduration_s = 20\n"
+             "[spread]\n[[cut]]\nx_mm = 16\ny_mm = 12\n");
+  const fs::path out = dir / "out";
+  const CliResult result = run_shell(
+      "'" + cli_path() + "' run '" + (dir / "long.toml").string() + "' --backend cpu -q --out '" + out.string() +
+      "' & pid=$!; for i in $(seq 200); do [ -f '" + (out / "frames.h5.partial").string() +
+      "' ] && break; sleep 0.05; done; sleep 0.5; kill -INT $pid; wait $pid; echo \"exit=$?\"");
+  EXPECT_NE(result.output.find("exit=130"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("interrupted after"), std::string::npos) << result.output;
+  ASSERT_TRUE(fs::exists(out / "frames.h5")) << result.output;
+  EXPECT_FALSE(fs::exists(out / "frames.h5.partial"));
+  EXPECT_EQ(int_attribute(out / "frames.h5", "complete"), 0);
+  const long long written = int_attribute(out / "frames.h5", "frames_written");
+  EXPECT_GE(written, 1);
+  EXPECT_LT(written, 600);
+}
+
+TEST(Validate, DescribesTheRunWithoutWritingAnything) {
+  const CliResult result = run_cli("validate '" + scenario("default.toml") + "'");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("valid"), std::string::npos);
+  EXPECT_NE(result.output.find("spread, blend"), std::string::npos) << result.output;
+  const CliResult tissue = run_cli("validate '" + scenario("tissue-only.toml") + "'");
+  EXPECT_NE(tissue.output.find("stages     blend\n"), std::string::npos) << tissue.output;
+}
+
+TEST(Backend, AutoSaysWhichBackendItTookAndWhy) {
+  const CliResult result = run_cli("run '" + scenario("golden/spread-single.toml") + "' --no-hdf5 --out '" +
+                                   (scratch_folder() / "out").string() + "'");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  std::string why_not;
+  const bool cuda = cuda_device_available(&why_not);
+  EXPECT_NE(result.output.find(cuda ? "on cuda" : "on cpu"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find(cuda ? "auto: CUDA device found" : "auto: " + why_not), std::string::npos)
+      << result.output;
+}
+
+TEST(Backend, AskingForCudaWithoutADeviceSaysWhy) {
+  std::string why_not;
+  if (cuda_device_available(&why_not)) GTEST_SKIP() << "this machine has a CUDA device";
+  const CliResult result = run_cli("run '" + scenario("golden/spread-single.toml") + "' --backend cuda --out '" +
+                                   (scratch_folder() / "out").string() + "'");
+  EXPECT_EQ(result.exit_code, 1) << result.output;
+  EXPECT_NE(result.output.find("cuda backend is not available"), std::string::npos) << result.output;
+}
+
+}  // namespace
+}  // namespace bleedsim::test

@@ -1,0 +1,38 @@
+// The CPU reference gives the same bytes at any thread count: every golden scene, frame by frame,
+// at 1, 2, 3, 8 and 13 threads (13 does not divide the rows evenly).
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "core/frame_hash.h"
+#include "core/scenario.h"
+#include "tests/test_paths.h"
+
+namespace bleedsim {
+namespace {
+
+std::vector<std::vector<std::pair<std::string, std::uint64_t>>> run_hashes(const std::string& scenario,
+                                                                           int threads) {
+  Simulation sim(load_scenario(scenario), BackendChoice{BackendChoice::Want::cpu, threads});
+  std::vector<std::vector<std::pair<std::string, std::uint64_t>>> frames;
+  for (int k = 0; k < sim.scene().frame_count(); ++k) {
+    sim.step();
+    frames.push_back(hash_fields(sim));
+  }
+  return frames;
+}
+
+TEST(CpuThreads, EveryThreadCountGivesTheSameFrames) {
+  int scenarios = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(test::source_dir() + "/scenarios/golden")) {
+    const std::string scenario = entry.path().string();
+    const auto one_thread = run_hashes(scenario, 1);
+    for (const int threads : {2, 3, 8, 13})
+      EXPECT_EQ(run_hashes(scenario, threads), one_thread) << scenario << " at " << threads << " threads";
+    ++scenarios;
+  }
+  EXPECT_GE(scenarios, 3);
+}
+
+}  // namespace
+}  // namespace bleedsim
