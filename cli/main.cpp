@@ -3,7 +3,7 @@
 
 #include <exception>
 #include <iostream>
-#include <map>
+#include <string>
 
 #include "cli/commands.h"
 #include "core/build_info.h"
@@ -14,18 +14,27 @@ namespace {
 using bleedsim::BackendChoice;
 using namespace bleedsim::cli;
 
-void add_backend_options(CLI::App& command, BackendChoice& choice) {
-  const std::map<std::string, BackendChoice::Want> wants = {
-      {"auto", BackendChoice::Want::automatic},
-      {"cpu", BackendChoice::Want::cpu},
-      {"cuda", BackendChoice::Want::cuda}};
-  command.add_option("-b,--backend", choice.want, "auto (CUDA when a device is present), cpu or cuda")
-      ->transform(CLI::CheckedTransformer(wants, CLI::ignore_case))
-      ->default_str("auto");
-  command.add_option("-j,--threads", choice.cpu_threads,
+// --backend and --threads, shared by the commands that run a scene.
+struct BackendOptions {
+  std::string name = "auto";
+  int threads = 0;
+
+  BackendChoice choice() const {
+    const BackendChoice::Want want = name == "cpu"    ? BackendChoice::Want::cpu
+                                     : name == "cuda" ? BackendChoice::Want::cuda
+                                                      : BackendChoice::Want::automatic;
+    return BackendChoice{want, threads};
+  }
+};
+
+void add_backend_options(CLI::App& command, BackendOptions& options) {
+  command.add_option("-b,--backend", options.name, "auto (CUDA when a device is present), cpu or cuda")
+      ->check(CLI::IsMember({"auto", "cpu", "cuda"}))
+      ->capture_default_str();
+  command.add_option("-j,--threads", options.threads,
                      "CPU threads for the cpu backend (0: one per hardware thread)")
       ->check(CLI::Range(0, 4096))
-      ->default_str("0");
+      ->capture_default_str();
 }
 
 }  // namespace
@@ -37,14 +46,16 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
 
   RunOptions run;
+  BackendOptions run_backend;
+  bool no_hdf5 = false;
   CLI::App* run_cmd = app.add_subcommand("run", "run a scenario and write its frames (HDF5, PNG)");
   run_cmd->add_option("scenario", run.scenario, "scenario file (.toml)")->required();
-  add_backend_options(*run_cmd, run.backend);
+  add_backend_options(*run_cmd, run_backend);
   run_cmd->add_option("-o,--out", run.out_dir, "output folder (default: the scenario's [output].dir)");
   run_cmd->add_option("--png-every", run.png_every,
                       "write a PNG of frame 0, every Nth frame and the last (0: none)")
       ->check(CLI::Range(0, 1000000));
-  run_cmd->add_flag("--no-hdf5{false}", run.hdf5, "do not write frames.h5");
+  run_cmd->add_flag("--no-hdf5", no_hdf5, "do not write frames.h5");
   run_cmd->add_flag("-q,--quiet", run.quiet, "print nothing but errors");
 
   std::string validate_path;
@@ -52,7 +63,7 @@ int main(int argc, char** argv) {
   validate_cmd->add_option("scenario", validate_path, "scenario file (.toml)")->required();
 
   std::string hash_path;
-  BackendChoice hash_backend;
+  BackendOptions hash_backend;
   CLI::App* hash_cmd = app.add_subcommand(
       "hash", "print each frame's per-field FNV-1a 64 hashes (writes no files)");
   hash_cmd->add_option("scenario", hash_path, "scenario file (.toml)")->required();
@@ -68,9 +79,13 @@ int main(int argc, char** argv) {
   }
 
   try {
-    if (*run_cmd) return run_command(run);
+    if (*run_cmd) {
+      run.backend = run_backend.choice();
+      run.hdf5 = !no_hdf5;
+      return run_command(run);
+    }
     if (*validate_cmd) return validate_command(validate_path);
-    if (*hash_cmd) return hash_command(hash_path, hash_backend);
+    if (*hash_cmd) return hash_command(hash_path, hash_backend.choice());
     if (*info_cmd) return info_command();
   } catch (const bleedsim::InputError& e) {
     std::cerr << "bleedsim: error: " << e.what() << "\n";
