@@ -59,7 +59,8 @@ struct Scene {
   Image tissue;                        // domain-sized RGBA8
   std::string tissue_source;           // file path, or "procedural"
   std::optional<SpreadParams> spread;  // the effects the scene calls for
-  std::vector<Cut> cuts;               // cuts the scenario makes, in time order as written
+  std::vector<Cut> cuts;               // cuts the scenario makes, in the order written (the
+                                       // order overlapping stains combine in)
   OutputSpec output;
   std::map<std::string, SourcePlace> places;  // where each key was written, for later messages
 

@@ -14,6 +14,10 @@ void check_consistent(const Scene& scene) {
     throw std::invalid_argument("scene domain must have positive sizes in pixels and mm");
   if (!(scene.frame_rate_hz > 0) || !std::isfinite(scene.frame_rate_hz))
     throw std::invalid_argument("scene frame rate must be positive and finite");
+  // frame_count() is an int: the same limit the scenario parser sets.
+  const double frames = scene.duration_s * scene.frame_rate_hz;
+  if (!(frames >= 0.5) || !(frames <= 1e7))
+    throw std::invalid_argument("scene duration × frame rate must give 1 to 10,000,000 frames");
   if (scene.tissue.width != d.width_px || scene.tissue.height != d.height_px ||
       scene.tissue.rgba.size() != std::size_t(d.pixel_count()) * 4)
     throw std::invalid_argument("scene tissue must be a width_px × height_px RGBA8 image");

@@ -89,6 +89,14 @@ TEST(Simulation, RefusesBadCutsAndUnknownFields) {
   EXPECT_THROW(sim.field("blood"), std::out_of_range);
 }
 
+TEST(Simulation, RefusesASceneWithNoFramesOrTooManyForItsFrameCounter) {
+  Scene scene = test::scene_in_code(true);
+  scene.duration_s = 0.001;  // rounds to 0 frames at 30 Hz
+  EXPECT_THROW(Simulation(scene, kCpu), std::invalid_argument);
+  scene.duration_s = 1e9;  // 3·10^10 frames would overflow frame_count()
+  EXPECT_THROW(Simulation(scene, kCpu), std::invalid_argument);
+}
+
 TEST(Simulation, RefusesASceneWhoseTissueDoesNotMatchItsDomain) {
   Scene scene = test::scene_in_code(true);
   scene.tissue.rgba.resize(10);
