@@ -65,15 +65,15 @@ struct GoldenCase {
   Want backend;
 };
 
-void PrintTo(const GoldenCase& c, std::ostream* out) {
-  *out << c.scene << " on " << (c.backend == Want::cuda ? "cuda" : "cpu");
-}
+const char* backend_name(Want backend) { return backend == Want::cuda ? "cuda" : "cpu"; }
+
+void PrintTo(const GoldenCase& c, std::ostream* out) { *out << c.scene << " on " << backend_name(c.backend); }
 
 class Golden : public ::testing::TestWithParam<GoldenCase> {};
 
 TEST_P(Golden, EveryFrameMatchesItsPinnedHash) {
   const GoldenCase& c = GetParam();
-  const std::string backend = c.backend == Want::cuda ? "cuda" : "cpu";
+  const std::string backend = backend_name(c.backend);
   if (c.backend == Want::cuda) {
     std::string why_not;
     if (!cuda_device_available(&why_not)) GTEST_SKIP() << "GPU parity NOT checked: " << why_not;
