@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_util.h"
 #include "core/backend.h"
 #include "core/tissue.h"
 
@@ -16,7 +17,6 @@ namespace bleedsim {
 namespace {
 
 constexpr double kFrameBudgetMs = 1000.0 / 30.0;
-constexpr int kWarmUpRuns = 3;
 
 struct Size {
   const char* name;
@@ -48,20 +48,10 @@ struct StageScene {
   }
   void spread() { backend->spread({cuts.as<const SpreadCut>(), cut_count, grid, stain.as<float>()}); }
   void blend() {
-    backend->blend({tissue.as<const std::uint8_t>(), stain.as<const float>(), grid.width, grid.height,
+    backend->blend({tissue.as<const std::uint8_t>(), stain.as<const float>(), nullptr, grid.width, grid.height,
                     frame.as<std::uint8_t>()});
   }
 };
-
-std::unique_ptr<Backend> backend_or_skip(BackendKind kind, benchmark::State& state) {
-  if (kind == BackendKind::cpu) return make_cpu_backend(0);
-  std::string why_not;
-  if (!cuda_device_available(&why_not)) {
-    state.SkipWithError(("CUDA not measured: " + why_not).c_str());
-    return nullptr;
-  }
-  return make_cuda_backend();
-}
 
 void time_stage(benchmark::State& state, BackendKind kind, const Size& size,
                 const std::function<void(StageScene&)>& work) {
@@ -109,7 +99,9 @@ int main(int argc, char** argv) {
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   bleedsim::register_all();
+  bleedsim::register_particle_benchmarks();
   benchmark::RunSpecifiedBenchmarks();
+  bleedsim::release_particle_benchmarks();
   benchmark::Shutdown();
   return 0;
 }

@@ -49,13 +49,14 @@ struct InterruptGuard {
 };
 
 // The fields a run writes: the frame first (PNGs are made from it), then those [output].fields
-// names, or all when it names none.
+// names, or when it names none, all but the large per-particle arrays.
 std::vector<FieldLayout> fields_to_write(const Simulation& sim) {
   const std::vector<std::string>& wanted = sim.scene().output.fields;
   std::vector<FieldLayout> specs = {*sim.field("frame").field};
   for (const std::string& name : sim.field_names()) {
     const bool listed = std::find(wanted.begin(), wanted.end(), name) != wanted.end();
-    if (name != "frame" && (wanted.empty() || listed)) specs.push_back(*sim.field(name).field);
+    const FieldLayout& field = *sim.field(name).field;
+    if (name != "frame" && (wanted.empty() ? !field.on_request : listed)) specs.push_back(field);
   }
   return specs;
 }

@@ -29,6 +29,11 @@ void Backend::blend(const BlendArgs& args) {
   run_blend(args);
 }
 
+void Backend::particles(ParticlePhase phase, const ParticleArgs& args) {
+  ++launches_["particles"];
+  run_particles(phase, args);
+}
+
 std::uint64_t Backend::launches(const std::string& stage) const {
   const auto it = launches_.find(stage);
   return it == launches_.end() ? 0 : it->second;

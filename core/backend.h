@@ -10,6 +10,7 @@
 
 #include "core/blend.h"
 #include "core/buffer.h"
+#include "core/particles.h"
 #include "core/spread.h"
 
 namespace bleedsim {
@@ -37,6 +38,9 @@ class Backend {
   // Stage twins (the work, counted per stage so a pipeline can prove what it ran).
   void spread(const SpreadArgs& args);
   void blend(const BlendArgs& args);
+  void particles(ParticlePhase phase, const ParticleArgs& args);  // counted as "particles"
+  // Temporary storage the particle sort needs here (none on the CPU, CUB's on the GPU).
+  virtual std::size_t particle_sort_scratch_bytes(int capacity, int key_bits) const = 0;
 
   std::uint64_t launches(const std::string& stage) const;
   std::size_t bytes_in_use() const { return *bytes_in_use_; }
@@ -46,6 +50,7 @@ class Backend {
   virtual void release_raw(void* data) = 0;
   virtual void run_spread(const SpreadArgs& args) = 0;
   virtual void run_blend(const BlendArgs& args) = 0;
+  virtual void run_particles(ParticlePhase phase, const ParticleArgs& args) = 0;
 
  private:
   std::map<std::string, std::uint64_t> launches_;

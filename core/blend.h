@@ -1,7 +1,7 @@
 #pragma once
 // Compositing the blood over the tissue into the frame (report §2.2.1, its HLSL pass): the stain
 // is taken out of the tissue's green and blue, so stained tissue reads red with the stain's soft
-// edge. Red and alpha pass through. Bytes map to [0, 1] as v/255 and back with round-half-up.
+// edge; red and alpha pass through. Particles then cover it. Bytes map to [0, 1] as v/255 and back with round-half-up.
 #include <cmath>
 #include <cstdint>
 
@@ -17,18 +17,35 @@ BLEEDSIM_HD inline std::uint8_t byte_from_unit(float v) {
   return static_cast<std::uint8_t>(clamped * 255.0f + 0.5f);
 }
 
-BLEEDSIM_HD inline void blend_pixel(const std::uint8_t* tissue_rgba, float stain,
+// Particles, drawn plainly until the screen-space stages give blood its real look: flat blood red
+// over the stained tissue, as opaque as the cover (a particle's fade).
+constexpr float kParticleRed = 0.45f, kParticleGreen = 0.02f, kParticleBlue = 0.03f;
+
+BLEEDSIM_HD inline std::uint8_t over(float below, float blood, float cover) {
+  return byte_from_unit(below * (1.0f - cover) + blood * cover);
+}
+
+BLEEDSIM_HD inline void blend_pixel(const std::uint8_t* tissue_rgba, float stain, float cover,
                                     std::uint8_t* frame_rgba) {
-  frame_rgba[0] = tissue_rgba[0];
-  frame_rgba[1] = byte_from_unit(unit_from_byte(tissue_rgba[1]) - stain);
-  frame_rgba[2] = byte_from_unit(unit_from_byte(tissue_rgba[2]) - stain);
+  const float green = unit_from_byte(tissue_rgba[1]) - stain;
+  const float blue = unit_from_byte(tissue_rgba[2]) - stain;
+  if (cover > 0.0f) {
+    frame_rgba[0] = over(unit_from_byte(tissue_rgba[0]), kParticleRed, cover);
+    frame_rgba[1] = over(fmaxf(green, 0.0f), kParticleGreen, cover);
+    frame_rgba[2] = over(fmaxf(blue, 0.0f), kParticleBlue, cover);
+  } else {
+    frame_rgba[0] = tissue_rgba[0];
+    frame_rgba[1] = byte_from_unit(green);
+    frame_rgba[2] = byte_from_unit(blue);
+  }
   frame_rgba[3] = tissue_rgba[3];
 }
 
-// The stage's twins. stain may be null: a scene without a spread shows the bare tissue.
+// The stage's twins. stain and cover may be null: a scene without that effect shows none of it.
 struct BlendArgs {
   const std::uint8_t* tissue_rgba;
   const float* stain;
+  const float* cover;
   int width;
   int height;
   std::uint8_t* frame_rgba;

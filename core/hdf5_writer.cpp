@@ -86,10 +86,22 @@ struct Checker {
 
 // The file types are spelled out (little-endian), so the file does not depend on the host.
 hid_t stored_type_of(ElementType type) {
-  return type == ElementType::u8 ? H5T_STD_U8LE : H5T_IEEE_F32LE;
+  switch (type) {
+    case ElementType::u8: return H5T_STD_U8LE;
+    case ElementType::u32: return H5T_STD_U32LE;
+    case ElementType::u64: return H5T_STD_U64LE;
+    case ElementType::f32: return H5T_IEEE_F32LE;
+  }
+  throw std::logic_error("HDF5 writer: unknown element type");
 }
 hid_t memory_type_of(ElementType type) {
-  return type == ElementType::u8 ? H5T_NATIVE_UINT8 : H5T_NATIVE_FLOAT;
+  switch (type) {
+    case ElementType::u8: return H5T_NATIVE_UINT8;
+    case ElementType::u32: return H5T_NATIVE_UINT32;
+    case ElementType::u64: return H5T_NATIVE_UINT64;
+    case ElementType::f32: return H5T_NATIVE_FLOAT;
+  }
+  throw std::logic_error("HDF5 writer: unknown element type");
 }
 
 Datatype string_type(const Checker& check, size_t size, H5T_cset_t cset) {
@@ -140,6 +152,7 @@ void write_image_spec_attribute(const Checker& check, hid_t object, const std::s
 
 void write_image_attributes(const Checker& check, hid_t dataset, const std::string& where,
                             const FieldLayout& field) {
+  if (!field.image) return;  // a per-element array (particles, counters) is no picture
   const bool truecolor =
       field.type == ElementType::u8 && (field.channels == 3 || field.channels == 4);
   const bool grayscale = field.channels == 1;
@@ -202,7 +215,8 @@ Group open_parent_group(const Checker& check, hid_t file, const std::vector<std:
 struct GrowingDataset {
   std::string where;                    // "/spread/stain", for messages
   hid_t memory_type = H5I_INVALID_HID;  // what append() hands over
-  std::vector<hsize_t> frame_shape;     // (1, H, W[, C]) for a field, (1) for /time
+  std::vector<hsize_t> frame_shape;     // (1, H, W[, C]) for an image, (1, N[, C]) for a
+                                        // per-element array, (1) for /time
   Dataset dataset;
 };
 
@@ -284,6 +298,9 @@ void validate(const std::vector<FieldLayout>& fields,
       throw std::invalid_argument(quoted + " is named twice (or clashes with /time)");
     if (field.width <= 0 || field.height <= 0 || field.channels <= 0)
       throw std::invalid_argument(quoted + ": width, height and channels must be positive");
+    if (!field.image && field.height != 1)
+      throw std::invalid_argument(quoted + ": a field that is not an image has height 1 (got " +
+                                  std::to_string(field.height) + "); its width counts elements");
     if (frame_bytes(field) > kMaxChunkBytes)
       throw std::runtime_error(quoted +
                                ": one frame is larger than 4 GiB, HDF5's largest chunk "
@@ -359,7 +376,11 @@ Hdf5FrameWriter::Hdf5FrameWriter(const std::string& path, const std::vector<Fiel
   for (const FieldLayout& spec : fields) {
     const std::vector<std::string> parts = split_path(spec.name);
     const std::string where = "/" + spec.name;
-    std::vector<hsize_t> frame_shape = {1, hsize_t(spec.height), hsize_t(spec.width)};
+    // An image is (T, H, W[, C]); a per-element array (T, N[, C]), as H5MD stores a
+    // per-particle time series.
+    std::vector<hsize_t> frame_shape = {1};
+    if (spec.image) frame_shape.push_back(hsize_t(spec.height));
+    frame_shape.push_back(hsize_t(spec.width));
     if (spec.channels != 1) frame_shape.push_back(hsize_t(spec.channels));
 
     Group parent = open_parent_group(check, file, parts);

@@ -13,8 +13,10 @@ namespace bleedsim {
 class Hdf5FrameWriter {
  public:
   // Writes one dataset per field, named by its path ("frame" → /frame, "spread/stain" →
-  // /spread/stain). Creates `path`.partial; the file takes its final name in finish(). Root attributes are
-  // written as strings (provenance: version, git sha, backend, device, flags, scenario text).
+  // /spread/stain): (T, H, W[, C]) for an image, (T, N[, C]) for a field with image == false
+  // (height 1, N = width elements). Creates `path`.partial; the file takes its final name in
+  // finish(). Root attributes are written as strings (provenance: version, git sha, backend,
+  // device, flags, scenario text).
   Hdf5FrameWriter(const std::string& path, const std::vector<FieldLayout>& fields,
                   const std::vector<std::pair<std::string, std::string>>& attributes,
                   int deflate_level);

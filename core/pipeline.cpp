@@ -1,6 +1,7 @@
 #include "core/pipeline.h"
 
 #include "core/blend_stage.h"
+#include "core/particle_stage.h"
 #include "core/spread_stage.h"
 
 namespace bleedsim {
@@ -22,6 +23,8 @@ std::unique_ptr<Stage> make_stage(const Scene& scene, State& state, Backend& bac
 const StageKind kStages[] = {
     {"spread", [](const Scene& s) { return s.spread.has_value(); }, SpreadStage::bytes_for,
      make_stage<SpreadStage>},
+    {"particles", [](const Scene& s) { return s.particles.has_value(); }, ParticleStage::bytes_for,
+     make_stage<ParticleStage>},
     {"blend", [](const Scene&) { return true; }, BlendStage::bytes_for, make_stage<BlendStage>},
 };
 

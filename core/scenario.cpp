@@ -15,8 +15,11 @@
 #include <initializer_list>
 #include <optional>
 #include <sstream>
+#include <tuple>
+#include <utility>
 
 #include "core/memory.h"
+#include "core/particle_model.h"
 #include "core/pipeline.h"
 #include "core/tissue.h"
 
@@ -30,7 +33,9 @@ struct KnownField {
   const char* name;
   const char* effect;  // the table that must be present for the field to exist
 };
-const KnownField kFields[] = {{"spread/stain", "spread"}};
+const KnownField kFields[] = {{"spread/stain", "spread"},          {"particles/cover", "particles"},
+                              {"particles/accounting", "particles"}, {"particles/position", "particles"},
+                              {"particles/velocity", "particles"},   {"particles/age", "particles"}};
 
 constexpr std::int64_t kMaxFrames = 10'000'000;
 
@@ -178,6 +183,7 @@ class Reader {
   }
 
   const std::string& path() const { return path_; }
+  void note_place(const std::string& key, const toml::source_region& region) { scene_.places[key] = place(region); }
 
  private:
   const toml::node* located(const toml::table& t, const std::string& prefix, const char* name) {
@@ -211,6 +217,8 @@ std::string name_from_file(const std::string& path) {
 
 const Bounds kPositiveSize{0.0, 10000.0, true};
 const Bounds kGrowth{0.0, 1000.0, true};
+const Bounds kSeconds{0.0, 86400.0};
+const Bounds kParticleRate{0.0, kMaxParticleRate};
 
 void read_scene_table(Reader& r, const toml::table& root, Scene& scene) {
   const toml::table* t = r.table(root, "scene", "scene");
@@ -247,6 +255,97 @@ void read_spread_table(Reader& r, const toml::table& root, Scene& scene) {
   scene.spread = spread;
 }
 
+// Reads a [x, y] pair of numbers, each within `bounds`.
+std::optional<std::pair<double, double>> read_vector(Reader& r, const toml::table& t, const std::string& prefix,
+                                                     const char* name, Bounds bounds) {
+  const toml::node* node = t.get(name);
+  if (!node) return std::nullopt;
+  const std::string key = prefix + "." + name;
+  const toml::array* pair = node->as_array();
+  if (!pair || pair->size() != 2) {
+    const std::string got = !pair           ? kind_of(*node)
+                            : pair->empty() ? "an empty array"
+                            : "an array of " + std::to_string(pair->size()) +
+                                  (pair->size() == 1 ? " element" : " elements");
+    r.fail(node->source(), key, "expected [x, y], two numbers, got " + got);
+  }
+  const auto component = [&](int i, const char* axis) {
+    const toml::node& v = *pair->get(std::size_t(i));
+    double value;
+    if (const auto n = v.value_exact<std::int64_t>()) value = double(*n);
+    else if (const auto f = v.value_exact<double>()) value = *f;
+    else r.fail(v.source(), key + "." + axis, std::string("expected a number, got ") + kind_of(v));
+    if (!std::isfinite(value))
+      r.fail(v.source(), key + "." + axis, "must be a finite number (got " + format_number(value) + ")");
+    if (!bounds.contains(value))
+      r.fail(v.source(), key + "." + axis, "must be " + bounds.describe() + " (got " + format_number(value) + ")");
+    return value;
+  };
+  r.note_place(key, node->source());
+  // x before y, so a pair with two bad numbers is refused at the first (function arguments have
+  // no order of evaluation).
+  const double x = component(0, "x");
+  const double y = component(1, "y");
+  return std::make_pair(x, y);
+}
+
+void read_particles_table(Reader& r, const toml::table& root, Scene& scene) {
+  const toml::table* t = r.table(root, "particles", "particles");
+  if (!t) return;
+  const std::string k = "particles";
+  r.only_known(*t, k,
+               {"capacity", "diameter_mm", "cell_mm", "max_per_cell", "rate_per_s", "volume_mm3_per_s",
+                "particle_volume_mm3", "bleed_s", "lifetime_s", "fade_s", "gravity_mm_s2", "drag_per_s",
+                "stiffness_per_s2", "damping_per_s", "max_speed_mm_s", "substeps", "jitter_mm", "velocity_mm_s",
+                "velocity_jitter_mm_s"});
+  ParticleParams p;
+  p.capacity = int(r.integer(*t, k, "capacity", 1, 1 << 28).value_or(p.capacity));
+  p.diameter_mm = r.number(*t, k, "diameter_mm", {0.0, 100.0, true}).value_or(p.diameter_mm);
+  p.cell_mm = r.number(*t, k, "cell_mm", {p.diameter_mm, 10000.0}).value_or(0.0);
+  p.max_per_cell = int(r.integer(*t, k, "max_per_cell", 1, 1024).value_or(p.max_per_cell));
+  const std::optional<double> rate = r.number(*t, k, "rate_per_s", kParticleRate);
+  const std::optional<double> volume = r.number(*t, k, "volume_mm3_per_s", {0.0, 1.0e6});
+  const std::optional<double> each = r.number(*t, k, "particle_volume_mm3", {0.0, 1.0e6, true});
+  if (rate && volume)
+    throw InputError(scene.place_of(k + ".volume_mm3_per_s"), k + ".volume_mm3_per_s",
+                     "give either rate_per_s or volume_mm3_per_s, not both");
+  if (volume.has_value() != each.has_value()) {
+    const std::string missing = volume ? "particle_volume_mm3" : "volume_mm3_per_s";
+    const std::string given = volume ? "volume_mm3_per_s" : "particle_volume_mm3";
+    throw InputError(scene.place_of(k + "." + given), k + "." + given, "needs " + missing + " beside it");
+  }
+  if (volume) {
+    p.rate_per_s = *volume / *each;
+    if (!kParticleRate.contains(p.rate_per_s))
+      throw InputError(scene.place_of(k + ".volume_mm3_per_s"), k + ".volume_mm3_per_s",
+                       "gives " + format_number(p.rate_per_s) + " particles per second; at most " +
+                           format_number(kMaxParticleRate));
+  } else {
+    p.rate_per_s = rate.value_or(p.rate_per_s);
+  }
+  p.bleed_s = r.number(*t, k, "bleed_s", kSeconds).value_or(p.bleed_s);
+  p.lifetime_s = r.number(*t, k, "lifetime_s", {0.0, 86400.0, true}).value_or(p.lifetime_s);
+  p.fade_s = r.number(*t, k, "fade_s", {0.0, p.lifetime_s, true}).value_or(std::min(p.fade_s, p.lifetime_s));
+  if (const auto g = read_vector(r, *t, k, "gravity_mm_s2", {-1.0e6, 1.0e6}))
+    std::tie(p.gravity_x_mm_s2, p.gravity_y_mm_s2) = *g;
+  p.drag_per_s = r.number(*t, k, "drag_per_s", {0.0, 1.0e6}).value_or(p.drag_per_s);
+  p.stiffness_per_s2 = r.number(*t, k, "stiffness_per_s2", {0.0, 1.0e12, true}).value_or(p.stiffness_per_s2);
+  p.damping_per_s = r.number(*t, k, "damping_per_s", {0.0, 1.0e6}).value_or(p.damping_per_s);
+  p.max_speed_mm_s = r.number(*t, k, "max_speed_mm_s", {0.0, 1.0e5, true}).value_or(p.max_speed_mm_s);
+  p.substeps = int(r.integer(*t, k, "substeps", 1, 100000).value_or(p.substeps));
+  p.jitter_mm = r.number(*t, k, "jitter_mm", {0.0, 100.0}).value_or(p.jitter_mm);
+  if (const auto v = read_vector(r, *t, k, "velocity_mm_s", {-1.0e5, 1.0e5}))
+    std::tie(p.velocity_x_mm_s, p.velocity_y_mm_s) = *v;
+  p.velocity_jitter_mm_s = r.number(*t, k, "velocity_jitter_mm_s", {0.0, 1.0e5}).value_or(p.velocity_jitter_mm_s);
+  scene.particles = p;
+  const SettingsProblem problem = particle_settings_problem(scene);
+  // A key the file leaves at its default is placed at the [particles] header, as a missing
+  // required key is placed at its table, so the message still points at a line.
+  if (!problem.key.empty())
+    throw InputError(scene.place_of(scene.places.count(problem.key) ? problem.key : k), problem.key,
+                     problem.message);
+}
+
 void read_cuts(Reader& r, const toml::table& root, Scene& scene) {
   const toml::node* node = root.get("cut");
   if (!node) return;
@@ -260,13 +359,20 @@ void read_cuts(Reader& r, const toml::table& root, Scene& scene) {
     const toml::table& t = *cuts[i].as_table();
     const std::string key = "cut[" + std::to_string(i) + "]";
     scene.places[key] = r.place(t.source());
-    r.only_known(t, key, {"x_mm", "y_mm", "start_s", "radius_mm", "growth_per_s"});
+    r.only_known(t, key, {"x_mm", "y_mm", "start_s", "radius_mm", "growth_per_s", "rate_per_s", "bleed_s"});
     Cut cut;
     cut.x_mm = r.required(r.number(t, key, "x_mm", {0.0, scene.domain.width_mm}), key, "x_mm");
     cut.y_mm = r.required(r.number(t, key, "y_mm", {0.0, scene.domain.height_mm}), key, "y_mm");
     cut.start_s = r.number(t, key, "start_s", {0.0, 86400.0}).value_or(0.0);
     cut.radius_mm = r.number(t, key, "radius_mm", kPositiveSize).value_or(defaults.radius_mm);
     cut.growth_per_s = r.number(t, key, "growth_per_s", kGrowth).value_or(defaults.growth_per_s);
+    const ParticleParams flow = scene.particles.value_or(ParticleParams{});
+    cut.rate_per_s = r.number(t, key, "rate_per_s", kParticleRate).value_or(flow.rate_per_s);
+    cut.bleed_s = r.number(t, key, "bleed_s", kSeconds).value_or(flow.bleed_s);
+    for (const char* particle_key : {"rate_per_s", "bleed_s"})
+      if (t.contains(particle_key) && !scene.particles)
+        throw InputError(scene.place_of(key + "." + particle_key), key + "." + particle_key,
+                         "has no effect: this scene declares no [particles]");
     scene.cuts.push_back(cut);
   }
 }
@@ -292,7 +398,11 @@ void read_output_table(Reader& r, const toml::table& root, Scene& scene) {
     const auto name = names[i].value_exact<std::string>();
     if (!name) r.fail(names[i].source(), key, std::string("expected a field name, got ") + kind_of(names[i]));
     const auto known = std::find_if(std::begin(kFields), std::end(kFields), [&](const KnownField& f) { return *name == f.name; });
-    if (known == std::end(kFields)) r.fail(names[i].source(), key, "unknown field '" + *name + "' (known: spread/stain)");
+    if (known == std::end(kFields)) {
+      std::string all;
+      for (const KnownField& f : kFields) all += std::string(all.empty() ? "" : ", ") + f.name;
+      r.fail(names[i].source(), key, "unknown field '" + *name + "' (known: " + all + ")");
+    }
     if (!root.contains(known->effect))
       r.fail(names[i].source(), key, "'" + *name + "' needs the [" + known->effect + "] effect, which this scene does not declare");
     if (std::find(out.fields.begin(), out.fields.end(), *name) != out.fields.end())
@@ -337,9 +447,10 @@ Scene parse_scenario(const std::string& text, const std::string& path) {
   scene.source_path = path;
   scene.source_text = text;
   Reader reader(scene, path);
-  reader.only_known(root, "", {"scene", "tissue", "spread", "cut", "output"});
+  reader.only_known(root, "", {"scene", "tissue", "spread", "particles", "cut", "output"});
   read_scene_table(reader, root, scene);
   read_spread_table(reader, root, scene);
+  read_particles_table(reader, root, scene);
   read_cuts(reader, root, scene);
   read_output_table(reader, root, scene);
   read_tissue(reader, root, scene);

@@ -24,7 +24,8 @@ SourcePlace Scene::place_of(const std::string& key) const {
 
 Cut Scene::cut_at(double x_mm, double y_mm, double start_s) const {
   const SpreadParams size = spread.value_or(SpreadParams{});
-  return Cut{x_mm, y_mm, start_s, size.radius_mm, size.growth_per_s};
+  const ParticleParams flow = particles.value_or(ParticleParams{});
+  return Cut{x_mm, y_mm, start_s, size.radius_mm, size.growth_per_s, flow.rate_per_s, flow.bleed_s};
 }
 
 }  // namespace bleedsim

@@ -24,20 +24,47 @@ struct Domain {
   std::int64_t pixel_count() const { return std::int64_t{width_px} * height_px; }
 };
 
-// A cut made by the tool: where and when, and how large a wound (the spread stain's radius and
-// growth rate; a cut the scenario or host leaves them out of takes the [spread] defaults).
+// A cut made by the tool: where and when, how large a wound (the spread stain's radius and growth
+// rate) and how hard it bleeds particles (rate, for how long). What a cut leaves out comes from the
+// scene's [spread] and [particles] defaults.
 struct Cut {
   double x_mm = 0.0;
   double y_mm = 0.0;
   double start_s = 0.0;
   double radius_mm = 0.0;
   double growth_per_s = 0.0;
+  double rate_per_s = 0.0;  // particles per second while it bleeds
+  double bleed_s = 0.0;     // how long it bleeds particles
 };
 
 // Parameters of the radial spread; present in a Scene only when the scene calls for it.
 struct SpreadParams {
   double radius_mm = 4.0;
   double growth_per_s = 0.5;
+};
+
+// Parameters of the particle blood flow (docs/particles.md); present only when the scene calls
+// for it. Units: mm, s, and accelerations per unit mass.
+struct ParticleParams {
+  int capacity = 65536;            // ring-buffer slots
+  double diameter_mm = 0.2;
+  double cell_mm = 0.0;            // grid cell edge; 0: the diameter
+  int max_per_cell = 8;            // neighbours visited per cell, at most
+  double rate_per_s = 500.0;       // default particles per second per bleeding cut
+  double bleed_s = 2.0;            // default bleeding time of a cut
+  double lifetime_s = 30.0;
+  double fade_s = 1.0;             // the last part of the lifetime, over which a particle fades
+  double gravity_x_mm_s2 = 0.0;    // along the panel; y points down
+  double gravity_y_mm_s2 = 1000.0;
+  double drag_per_s = 100.0;       // viscous drag: sticky, slow blood
+  double stiffness_per_s2 = 4.0e5; // contact spring, per mm of overlap
+  double damping_per_s = 100.0;    // contact dashpot, per mm/s of approach speed
+  double max_speed_mm_s = 100.0;   // no particle moves faster: none passes through another
+  int substeps = 40;               // physics steps per frame
+  double jitter_mm = 0.05;         // emission position jitter, ±
+  double velocity_x_mm_s = 0.0;    // emission velocity
+  double velocity_y_mm_s = 0.0;
+  double velocity_jitter_mm_s = 5.0;
 };
 
 struct OutputSpec {
@@ -59,6 +86,7 @@ struct Scene {
   Image tissue;                        // domain-sized RGBA8
   std::string tissue_source;           // file path, or "procedural"
   std::optional<SpreadParams> spread;  // the effects the scene calls for
+  std::optional<ParticleParams> particles;
   std::vector<Cut> cuts;               // cuts the scenario makes, in the order written (the
                                        // order overlapping stains combine in)
   OutputSpec output;
@@ -69,7 +97,7 @@ struct Scene {
   double frame_time_s(std::int64_t k) const;
   // Where `key` was written in the scenario file (the file alone when it was not written).
   SourcePlace place_of(const std::string& key) const;
-  // A cut at (x, y) starting at t with the scene's spread defaults for its size.
+  // A cut at (x, y) starting at t with the scene's spread and particle defaults.
   Cut cut_at(double x_mm, double y_mm, double start_s) const;
 };
 

@@ -4,9 +4,22 @@
 #include <stdexcept>
 
 #include "core/memory.h"
+#include "core/particle_model.h"
 
 namespace bleedsim {
 namespace {
+
+void check_cut(const Cut& cut) {
+  if (!std::isfinite(cut.x_mm) || !std::isfinite(cut.y_mm) || !std::isfinite(cut.start_s) ||
+      !std::isfinite(cut.radius_mm) || !std::isfinite(cut.growth_per_s) || !std::isfinite(cut.rate_per_s) ||
+      !std::isfinite(cut.bleed_s))
+    throw std::invalid_argument("a cut's position, start, radius, growth, rate and bleeding time must be finite");
+  if (!(cut.radius_mm > 0) || !(cut.growth_per_s > 0))
+    throw std::invalid_argument("a cut's radius and growth rate must be positive");
+  if (cut.rate_per_s < 0 || cut.rate_per_s > kMaxParticleRate || cut.bleed_s < 0)
+    throw std::invalid_argument("a cut's particle rate must be between 0 and 1e8 per second and its "
+                                "bleeding time not negative");
+}
 
 void check_consistent(const Scene& scene) {
   const Domain& d = scene.domain;
@@ -21,6 +34,16 @@ void check_consistent(const Scene& scene) {
   if (scene.tissue.width != d.width_px || scene.tissue.height != d.height_px ||
       scene.tissue.rgba.size() != std::size_t(d.pixel_count()) * 4)
     throw std::invalid_argument("scene tissue must be a width_px × height_px RGBA8 image");
+  for (const Cut& cut : scene.cuts) check_cut(cut);
+  if (scene.particles) {
+    const ParticleParams& p = *scene.particles;
+    if (p.capacity < 1 || !(p.diameter_mm > 0) || p.max_per_cell < 1 || p.substeps < 1 ||
+        !(p.lifetime_s > 0) || !(p.fade_s > 0) || !(p.stiffness_per_s2 > 0) || !(p.damping_per_s >= 0) ||
+        !(p.drag_per_s >= 0) || !(p.max_speed_mm_s > 0) || (p.cell_mm != 0 && !(p.cell_mm >= p.diameter_mm)))
+      throw std::invalid_argument("scene particle parameters out of range (see docs/particles.md)");
+    const SettingsProblem problem = particle_settings_problem(scene);
+    if (!problem.key.empty()) throw std::invalid_argument(problem.key + ": " + problem.message);
+  }
 }
 
 // The fields must fit where the backend computes, and a host copy of them must fit for reading
@@ -50,11 +73,7 @@ Simulation::Simulation(Scene scene, const BackendChoice& choice) : scene_(std::m
 Simulation::~Simulation() = default;
 
 void Simulation::add_cut(const Cut& cut) {
-  if (!std::isfinite(cut.x_mm) || !std::isfinite(cut.y_mm) || !std::isfinite(cut.start_s) ||
-      !std::isfinite(cut.radius_mm) || !std::isfinite(cut.growth_per_s))
-    throw std::invalid_argument("a cut's position, start, radius and growth must be finite");
-  if (!(cut.radius_mm > 0) || !(cut.growth_per_s > 0))
-    throw std::invalid_argument("a cut's radius and growth rate must be positive");
+  check_cut(cut);
   state_.cuts.push_back(cut);
 }
 

@@ -13,23 +13,14 @@ std::size_t stain_bytes(const Scene& scene) {
 
 std::size_t cut_capacity_for(std::size_t cuts) { return std::max(kInitialCutCapacity, cuts); }
 
-Field stain_field(const Scene& scene) {
-  Field field;
-  field.name = "spread/stain";
-  field.type = ElementType::f32;
-  field.width = scene.domain.width_px;
-  field.height = scene.domain.height_px;
-  field.unit = "1";
-  field.description =
-      "radial-spread stain: fraction of the tissue's green and blue taken out (report 2.2.1)";
-  return field;
-}
-
 }  // namespace
 
 SpreadStage::SpreadStage(const Scene& scene, State& state, Backend& backend)
     : Stage("spread"),
-      stain_(add_field(state, backend, stain_field(scene))),
+      stain_(add_field(state, backend,
+                       image_field(scene, "spread/stain", ElementType::f32, 1, "1",
+                                   "radial-spread stain: fraction of the tissue's green and blue taken out "
+                                   "(report 2.2.1)"))),
       cuts_(allocate(backend, cut_capacity_for(scene.cuts.size()) * sizeof(SpreadCut))) {}
 
 std::size_t SpreadStage::bytes_for(const Scene& scene) {

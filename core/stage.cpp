@@ -2,6 +2,19 @@
 
 namespace bleedsim {
 
+Field image_field(const Scene& scene, const char* name, ElementType type, int channels, const char* unit,
+                  const char* description) {
+  Field field;
+  field.name = name;
+  field.type = type;
+  field.channels = channels;
+  field.width = scene.domain.width_px;
+  field.height = scene.domain.height_px;
+  field.unit = unit;
+  field.description = description;
+  return field;
+}
+
 Buffer Stage::allocate(Backend& backend, std::size_t bytes) {
   Buffer buffer = backend.allocate(bytes);
   bytes_ += bytes;

@@ -10,6 +10,10 @@
 
 namespace bleedsim {
 
+// A field with one value (of `channels` components) per pixel of the scene's panel.
+Field image_field(const Scene& scene, const char* name, ElementType type, int channels, const char* unit,
+                  const char* description);
+
 class Stage {
  public:
   explicit Stage(std::string name) : name_(std::move(name)) {}

@@ -2,7 +2,13 @@
 
 namespace bleedsim {
 
-std::size_t element_size(ElementType type) { return type == ElementType::u8 ? 1 : 4; }
+std::size_t element_size(ElementType type) {
+  switch (type) {
+    case ElementType::u8: return 1;
+    case ElementType::u64: return 8;
+    default: return 4;
+  }
+}
 
 Field* State::find(const std::string& name) {
   for (Field& field : fields)

@@ -12,25 +12,29 @@
 
 namespace bleedsim {
 
-enum class ElementType { u8, f32 };
+enum class ElementType { u8, u32, u64, f32 };
 std::size_t element_size(ElementType type);
 
-// What a per-pixel quantity is: its name, element type and shape. Writers and readers need only this.
+// What a quantity is: its name, element type and shape. Writers and readers need only this.
+// Most are images (height × width pixels); some are per-element arrays (one row of `width`
+// elements: a particle per ring-buffer slot, or a handful of counters).
 struct FieldLayout {
   std::string name;  // "frame", "spread/stain": also its path in the HDF5 output
   ElementType type = ElementType::f32;
   int channels = 1;
   int width = 0;
-  int height = 0;
+  int height = 0;  // 1 when not an image
   std::string unit;
   std::string description;
+  bool image = true;  // last, so aggregate initialisers written before it stay valid
+  bool on_request = false;  // written to files only when the scene lists it (per-particle arrays)
 
   std::size_t bytes() const {
     return std::size_t(width) * std::size_t(height) * std::size_t(channels) * element_size(type);
   }
 };
 
-// A per-pixel quantity a stage produces (the frame, or an effect's field), held on the backend.
+// A quantity a stage produces (the frame, an effect's field, particle state), held on the backend.
 struct Field : FieldLayout {
   Buffer data;
 };

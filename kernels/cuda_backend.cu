@@ -63,6 +63,9 @@ class CudaBackend final : public Backend {
     BLEEDSIM_CUDA_CHECK(cudaMemGetInfo(&free_bytes, &total_bytes));
     return free_bytes;
   }
+  std::size_t particle_sort_scratch_bytes(int capacity, int key_bits) const override {
+    return particle_sort_scratch_cuda(capacity, key_bits);
+  }
   double time_ms(const std::function<void()>& work) override {
     CudaEvent start, stop;
     BLEEDSIM_CUDA_CHECK(cudaEventRecord(start.get()));
@@ -83,6 +86,7 @@ class CudaBackend final : public Backend {
   void release_raw(void* data) override { cudaFree(data); }
   void run_spread(const SpreadArgs& args) override { spread_cuda(args); }
   void run_blend(const BlendArgs& args) override { blend_cuda(args); }
+  void run_particles(ParticlePhase phase, const ParticleArgs& args) override { particles_cuda(phase, args); }
 
  private:
   int device_ = 0;

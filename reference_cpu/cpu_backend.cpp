@@ -34,6 +34,7 @@ class CpuBackend final : public Backend {
   void download(void* dst, const void* src, std::size_t bytes) override { std::memcpy(dst, src, bytes); }
   void synchronize() override {}
   std::size_t memory_available() const override { return available_host_memory(); }
+  std::size_t particle_sort_scratch_bytes(int, int) const override { return 0; }
   double time_ms(const std::function<void()>& work) override {
     const auto start = std::chrono::steady_clock::now();
     work();
@@ -50,6 +51,9 @@ class CpuBackend final : public Backend {
   void release_raw(void* data) override { std::free(data); }
   void run_spread(const SpreadArgs& args) override { spread_cpu(args, threads_); }
   void run_blend(const BlendArgs& args) override { blend_cpu(args, threads_); }
+  void run_particles(ParticlePhase phase, const ParticleArgs& args) override {
+    particles_cpu(phase, args, threads_);
+  }
 
  private:
   int threads_;

@@ -2,7 +2,10 @@
 """Checks a bleedsim HDF5 output file the way a user sees it through h5py.
 
     /usr/bin/python3 tests/check_hdf5_layout.py FILE [--frames N] [--fields a,b]
-                                                [--width W --height H]
+                                                [--width W --height H] [--arrays c,d]
+
+--fields names image fields, (T, H, W[, C]); --arrays names fields that are not images:
+per-element arrays such as particle state or counters, (T, N[, C]), with no image attributes.
 
 The layout is docs/output-format.md. Prints one line per failed check and exits 1 on any
 failure; otherwise prints a one-line summary and exits 0. Needs h5py and numpy (Debian's
@@ -15,6 +18,9 @@ import h5py
 import numpy as np
 
 PROVENANCE = ("bleedsim_version", "git_sha", "backend", "device", "build_flags", "scenario_text")
+FIELD_TYPES = (np.float32, np.uint8, np.uint32, np.uint64)
+IMAGE_ATTRIBUTES = ("CLASS", "IMAGE_VERSION", "IMAGE_SUBCLASS", "INTERLACE_MODE",
+                    "IMAGE_WHITE_IS_ZERO")
 FRAME_IMAGE_ATTRIBUTES = {"CLASS": "IMAGE", "IMAGE_VERSION": "1.2",
                           "IMAGE_SUBCLASS": "IMAGE_TRUECOLOR", "INTERLACE_MODE": "INTERLACE_PIXEL"}
 
@@ -103,13 +109,35 @@ def check_field(check, file, name, shape):
     node = dataset(check, file, "/" + name)
     if node is None:
         return
-    check.expect(node.dtype == np.float32, f"{node.name}: type {node.dtype}, expected float32")
+    check.expect(node.dtype in FIELD_TYPES,
+                 f"{node.name}: type {node.dtype}, expected float32, uint8, uint32 or uint64")
     if shape is not None:
         check.expect(node.shape == shape, f"{node.name}: shape {node.shape}, expected {shape}")
     elif not check.expect(node.ndim == 3, f"{node.name}: shape {node.shape}, expected (T, H, W)"):
         return
     check_text_attribute(check, node, "unit", nonempty=False)  # "" is a fine unit for a count
     check_text_attribute(check, node, "description")
+    check_frame_chunks_and_filters(check, node)
+
+
+def check_array(check, file, name, frames):
+    """A field that is not an image: (T, N) or (T, N, C), one frame per chunk, no image attributes."""
+    node = dataset(check, file, "/" + name)
+    if node is None:
+        return
+    check.expect(node.dtype in FIELD_TYPES,
+                 f"{node.name}: type {node.dtype}, expected float32, uint8, uint32 or uint64")
+    if not check.expect(node.ndim in (2, 3),
+                        f"{node.name}: shape {node.shape}, expected (T, N) or (T, N, C)"):
+        return
+    if frames is not None:
+        check.expect(node.shape[0] == frames,
+                     f"{node.name}: {node.shape[0]} frames, but /frame holds {frames}")
+    check_text_attribute(check, node, "unit", nonempty=False)
+    check_text_attribute(check, node, "description")
+    for attribute in IMAGE_ATTRIBUTES:
+        check.expect(attribute not in node.attrs,
+                     f"{node.name}: has image attribute {attribute}, but is not an image")
     check_frame_chunks_and_filters(check, node)
 
 
@@ -136,6 +164,8 @@ def check_file(path, args):
         check_time(check, file, frames)
         for field in args.fields:
             check_field(check, file, field, shape)
+        for array in args.arrays:
+            check_array(check, file, array, frames)
         check_root(check, file, frames)
     return check.failures, shape
 
@@ -148,8 +178,12 @@ def main():
                         help="comma-separated fields expected besides /frame, e.g. spread/stain")
     parser.add_argument("--width", type=int, help="expected frame width in pixels")
     parser.add_argument("--height", type=int, help="expected frame height in pixels")
+    parser.add_argument("--arrays", default="",
+                        help="comma-separated fields expected that are not images (per-element "
+                             "arrays, (T, N[, C])), e.g. particles/position")
     args = parser.parse_args()
     args.fields = [field.strip("/") for field in args.fields.split(",") if field.strip()]
+    args.arrays = [array.strip("/") for array in args.arrays.split(",") if array.strip()]
 
     failures, shape = check_file(args.file, args)
     for failure in failures:
@@ -158,7 +192,8 @@ def main():
         return 1
     frames, height, width = shape
     fields = ", ".join(args.fields) if args.fields else "no fields"
-    print(f"OK {args.file}: {frames} frames of {width}x{height}, {fields}")
+    arrays = f"; arrays {', '.join(args.arrays)}" if args.arrays else ""
+    print(f"OK {args.file}: {frames} frames of {width}x{height}, {fields}{arrays}")
     return 0
 
 

@@ -71,6 +71,61 @@ void write_sample(const fs::path& path, int deflate_level,
   writer.finish(true);
 }
 
+// --- Per-element arrays (image == false): particles and counters ---------------------------------
+
+constexpr int kSlots = 5;     // particle ring-buffer capacity
+constexpr int kCounters = 4;  // accounting counters
+
+std::vector<FieldLayout> array_fields() {
+  std::vector<FieldLayout> fields = sample_fields();
+  fields.push_back({"particles/position", ElementType::f32, 2, kSlots, 1, "m",
+                    "particle position (x, y), one per ring-buffer slot", false});
+  fields.push_back({"particles/accounting", ElementType::u64, 1, kCounters, 1, "1",
+                    "particle counters", false});
+  fields.push_back({"particles/id", ElementType::u32, 1, kSlots, 1, "", "particle id per slot",
+                    false});
+  return fields;
+}
+
+// (x, y) per slot, x and y interleaved as in memory ([slot][component]), different in every slot,
+// component and frame.
+std::vector<float> position_values(int frame) {
+  std::vector<float> xy(std::size_t(kSlots) * 2);
+  for (std::size_t i = 0; i < xy.size(); ++i)
+    xy[i] = 0.375f * float(i) - 1.25f + 10.0f * float(frame) + (i % 2 ? 0.001f : 0.0f);
+  return xy;
+}
+
+// Beyond 2^53 and 2^63, so a detour through double or a signed type would show.
+std::vector<std::uint64_t> accounting_values(int frame) {
+  const std::uint64_t f = std::uint64_t(frame);
+  return {f + 1, (std::uint64_t(1) << 40) + 3 * f, 0xFFFFFFFFFFFFFFF0ull + f,
+          0x0123456789ABCDEFull * (f + 1)};
+}
+
+// Beyond 2^31, so a signed 32-bit detour would show.
+std::vector<std::uint32_t> id_values(int frame) {
+  std::vector<std::uint32_t> ids(kSlots);
+  for (int i = 0; i < kSlots; ++i)
+    ids[std::size_t(i)] = 0xF0000000u + std::uint32_t(i) * 7u + std::uint32_t(frame) * 100u;
+  return ids;
+}
+
+void write_array_sample(const fs::path& path, int deflate_level,
+                        const Attributes& attributes = kAttributes) {
+  Hdf5FrameWriter writer(path.string(), array_fields(), attributes, deflate_level);
+  for (int frame = 0; frame < kFrames; ++frame) {
+    const std::vector<std::uint8_t> rgba = frame_pattern(frame);
+    const std::vector<float> stain = stain_values(frame);
+    const std::vector<float> position = position_values(frame);
+    const std::vector<std::uint64_t> accounting = accounting_values(frame);
+    const std::vector<std::uint32_t> ids = id_values(frame);
+    writer.append(frame_time(frame),
+                  {rgba.data(), stain.data(), position.data(), accounting.data(), ids.data()});
+  }
+  writer.finish(true);
+}
+
 // A folder of its own for each test, so tests run in parallel (ctest -j) never meet.
 fs::path test_folder() {
   const testing::TestInfo* test = testing::UnitTest::GetInstance()->current_test_info();
@@ -357,6 +412,118 @@ TEST(Hdf5FrameWriter, ImageAttributesFollowTheHdf5ImageSpec) {
   EXPECT_EQ(H5Aexists(stain, "INTERLACE_MODE"), 0);
 }
 
+// --- Per-element arrays ---------------------------------------------------------------------------
+
+TEST(Hdf5FrameWriter, NonImageFieldsAreTimeSeriesOfElements) {
+  const fs::path path = test_folder() / "frames.h5";
+  write_array_sample(path, 4);
+  File file(path);
+  Dataset position(file, "/particles/position");
+  Dataset accounting(file, "/particles/accounting");
+  Dataset ids(file, "/particles/id");
+
+  // (T, N, C) and (T, N): no height axis.
+  EXPECT_EQ(dims_of(position), (std::vector<hsize_t>{kFrames, kSlots, 2}));
+  EXPECT_EQ(dims_of(accounting), (std::vector<hsize_t>{kFrames, kCounters}));
+  EXPECT_EQ(dims_of(ids), (std::vector<hsize_t>{kFrames, kSlots}));
+  EXPECT_EQ(extent_of(position).max_dims, (std::vector<hsize_t>{H5S_UNLIMITED, kSlots, 2}));
+  EXPECT_EQ(extent_of(accounting).max_dims, (std::vector<hsize_t>{H5S_UNLIMITED, kCounters}));
+  EXPECT_EQ(chunk_of(position), (std::vector<hsize_t>{1, kSlots, 2}));
+  EXPECT_EQ(chunk_of(accounting), (std::vector<hsize_t>{1, kCounters}));
+  EXPECT_EQ(chunk_of(ids), (std::vector<hsize_t>{1, kSlots}));
+
+  Type position_type(H5Dget_type(position));
+  Type accounting_type(H5Dget_type(accounting));
+  Type id_type(H5Dget_type(ids));
+  EXPECT_GT(H5Tequal(position_type, H5T_IEEE_F32LE), 0);
+  EXPECT_GT(H5Tequal(accounting_type, H5T_STD_U64LE), 0);
+  EXPECT_GT(H5Tequal(id_type, H5T_STD_U32LE), 0);
+
+  const std::vector<H5Z_filter_t> expected = {H5Z_FILTER_SHUFFLE, H5Z_FILTER_DEFLATE};
+  EXPECT_EQ(filters_of(position), expected);
+  EXPECT_EQ(filters_of(accounting), expected);
+  EXPECT_EQ(filters_of(ids), expected);
+
+  // The images beside them keep their (T, H, W[, C]) shape.
+  EXPECT_EQ(dims_of(Dataset(file, "/frame")), (std::vector<hsize_t>{kFrames, kHeight, kWidth, 4}));
+  EXPECT_EQ(dims_of(Dataset(file, "/spread/stain")),
+            (std::vector<hsize_t>{kFrames, kHeight, kWidth}));
+}
+
+TEST(Hdf5FrameWriter, NonImageFieldsReadBackExactly) {
+  for (const int level : {0, 4}) {
+    SCOPED_TRACE("deflate level " + std::to_string(level));
+    const fs::path path = test_folder() / ("frames" + std::to_string(level) + ".h5");
+    write_array_sample(path, level);
+    File file(path);
+    const std::vector<float> position =
+        read_all<float>(Dataset(file, "/particles/position"), H5T_NATIVE_FLOAT);
+    const std::vector<std::uint64_t> accounting =
+        read_all<std::uint64_t>(Dataset(file, "/particles/accounting"), H5T_NATIVE_UINT64);
+    const std::vector<std::uint32_t> ids =
+        read_all<std::uint32_t>(Dataset(file, "/particles/id"), H5T_NATIVE_UINT32);
+    const std::vector<std::uint8_t> rgba =
+        read_all<std::uint8_t>(Dataset(file, "/frame"), H5T_NATIVE_UINT8);
+    ASSERT_EQ(position.size(), std::size_t(kFrames) * kSlots * 2);
+    ASSERT_EQ(accounting.size(), std::size_t(kFrames) * kCounters);
+    ASSERT_EQ(ids.size(), std::size_t(kFrames) * kSlots);
+    for (int frame = 0; frame < kFrames; ++frame) {
+      SCOPED_TRACE("frame " + std::to_string(frame));
+      EXPECT_EQ(frame_of(position, frame, kSlots * 2), position_values(frame));
+      EXPECT_EQ(frame_of(accounting, frame, kCounters), accounting_values(frame));
+      EXPECT_EQ(frame_of(ids, frame, kSlots), id_values(frame));
+      EXPECT_EQ(frame_of(rgba, frame, kPixels * 4), frame_pattern(frame));
+    }
+  }
+}
+
+TEST(Hdf5FrameWriter, NonImageFieldsHaveUnitsButNoImageAttributes) {
+  const fs::path path = test_folder() / "frames.h5";
+  write_array_sample(path, 4);
+  File file(path);
+  for (const char* name : {"/particles/position", "/particles/accounting", "/particles/id"}) {
+    SCOPED_TRACE(name);
+    Dataset dataset(file, name);
+    for (const char* image_attribute : {"CLASS", "IMAGE_VERSION", "IMAGE_SUBCLASS",
+                                        "INTERLACE_MODE", "IMAGE_WHITE_IS_ZERO"})
+      EXPECT_EQ(H5Aexists(dataset, image_attribute), 0) << image_attribute;
+    EXPECT_TRUE(text_attribute(dataset, "unit").variable_length);
+  }
+  Dataset position(file, "/particles/position");
+  EXPECT_EQ(text_attribute(position, "unit").value, "m");
+  EXPECT_EQ(text_attribute(position, "description").value,
+            "particle position (x, y), one per ring-buffer slot");
+  Dataset accounting(file, "/particles/accounting");
+  EXPECT_EQ(text_attribute(accounting, "unit").value, "1");
+  EXPECT_EQ(text_attribute(accounting, "description").value, "particle counters");
+  EXPECT_EQ(text_attribute(Dataset(file, "/particles/id"), "unit").value, "");
+  // The images in the same file still are images.
+  EXPECT_EQ(text_attribute(Dataset(file, "/frame"), "CLASS").value, "IMAGE");
+  EXPECT_EQ(text_attribute(Dataset(file, "/spread/stain"), "CLASS").value, "IMAGE");
+}
+
+TEST(Hdf5FrameWriter, NonImageFieldWithHeightOtherThanOneIsRefused) {
+  const fs::path path = test_folder() / "frames.h5";
+  for (const int height : {2, kHeight}) {
+    SCOPED_TRACE("height " + std::to_string(height));
+    std::vector<FieldLayout> fields = sample_fields();
+    fields.push_back({"particles/position", ElementType::f32, 2, kSlots, height, "m",
+                      "particle position", false});
+    try {
+      Hdf5FrameWriter writer(path.string(), fields, kAttributes, 4);
+      ADD_FAILURE() << "no exception";
+    } catch (const std::invalid_argument& error) {
+      EXPECT_NE(message_of(error).find("particles/position"), std::string::npos) << error.what();
+      EXPECT_NE(message_of(error).find("height"), std::string::npos) << error.what();
+    }
+    EXPECT_FALSE(fs::exists(partial(path)));
+  }
+  // The same layout as an image is fine.
+  std::vector<FieldLayout> fields = sample_fields();
+  fields.push_back({"spread/velocity", ElementType::f32, 2, kWidth, kHeight, "m/s", "velocity"});
+  EXPECT_NO_THROW(Hdf5FrameWriter(path.string(), fields, kAttributes, 4));
+}
+
 // Each object's name, and whether its header carries any time. (H5Pget_obj_track_times on a
 // dataset's creation list read back says nothing: HDF5 1.10 reports 1 there whatever was written.)
 herr_t collect_object_times(hid_t, const char* name, const H5O_info_t* info, void* out) {
@@ -515,10 +682,11 @@ TEST(Hdf5FrameWriter, ReleasesEveryHandle) {
 // --- The layout checker script -----------------------------------------------------------------
 
 // Runs tests/check_hdf5_layout.py as a user would; its exit status.
-int run_layout_checker(const fs::path& file) {
+int run_layout_checker(const fs::path& file, const std::string& more_arguments = "") {
   const std::string command = "'" + test::python() + "' '" + test::source_dir() +
                               "/tests/check_hdf5_layout.py' '" + file.string() +
-                              "' --frames 3 --width 7 --height 5 --fields spread/stain";
+                              "' --frames 3 --width 7 --height 5 --fields spread/stain" +
+                              more_arguments;
   const int status = std::system(command.c_str());
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
@@ -539,6 +707,26 @@ TEST(Hdf5LayoutChecker, AcceptsWhatTheWriterWritesAndRejectsMissingProvenance) {
   provenance.erase(provenance.begin() + 1);  // git_sha
   write_sample(folder / "no_git_sha.h5", 4, provenance);
   EXPECT_EQ(run_layout_checker(folder / "no_git_sha.h5"), 1);
+}
+
+// Per-element arrays pass as (T, N[, C]) without image attributes; an image named as one fails.
+TEST(Hdf5LayoutChecker, AcceptsNonImageArraysAndRejectsAnImageNamedAsOne) {
+  const std::string has_h5py = "'" + test::python() + "' -c 'import h5py' >/dev/null 2>&1";
+  if (std::system(has_h5py.c_str()) != 0)
+    GTEST_SKIP() << test::python() << " has no h5py (BLEEDSIM_PYTHON may name one that has)";
+  const fs::path folder = test_folder();
+  const Attributes provenance = {{"bleedsim_version", "0.1.0"}, {"git_sha", "0123456789abcdef"},
+                                 {"backend", "reference_cpu"},  {"device", "test host"},
+                                 {"build_flags", "-O2"},        {"scenario_text", "[spread]\n"}};
+  write_array_sample(folder / "arrays.h5", 4, provenance);
+  EXPECT_EQ(run_layout_checker(folder / "arrays.h5"), 0);  // arrays not asked for: ignored
+  EXPECT_EQ(run_layout_checker(folder / "arrays.h5",
+                               " --arrays particles/position,particles/accounting,particles/id"),
+            0);
+  // /spread/stain is (T, H, W) and an HDF5 image: CLASS gives it away.
+  EXPECT_EQ(run_layout_checker(folder / "arrays.h5", " --arrays particles/position,spread/stain"),
+            1);
+  EXPECT_EQ(run_layout_checker(folder / "arrays.h5", " --arrays particles/missing"), 1);
 }
 
 // --- PNG ---------------------------------------------------------------------------------------

@@ -308,9 +308,10 @@ TEST(ScenarioBadInput, UnknownKeyFarFromAnyListsTheKnownOnes) {
 }
 
 TEST(ScenarioBadInput, UnknownTopLevelTable) {
-  EXPECT_TRUE(refused_at(kBase + "[particles]\ncount = 3\n", kEnd, "particles",
-                         "unknown table (known here: scene tissue spread cut output)"));
+  EXPECT_TRUE(refused_at(kBase + "[lighting]\nlamps = 3\n", kEnd, "lighting",
+                         "unknown table (known here: scene tissue spread particles cut output)"));
   EXPECT_TRUE(refused_at(kBase + "[sprad]\n", kEnd, "sprad", "unknown table; did you mean 'spread'?"));
+  EXPECT_TRUE(refused_at(kBase + "[particle]\n", kEnd, "particle", "unknown table; did you mean 'particles'?"));
 }
 
 TEST(ScenarioBadInput, StringForAnInteger) {
@@ -441,7 +442,9 @@ TEST(ScenarioBadInput, CutWrittenAsASingleTable) {
 
 TEST(ScenarioBadInput, OutputFieldWithAnUnknownName) {
   EXPECT_TRUE(refused_at(kBase + "fields = [\n  \"spread/stain\",\n  \"spread/blood\",\n]\n", kEnd + 2,
-                         "output.fields[1]", "unknown field 'spread/blood' (known: spread/stain)"));
+                         "output.fields[1]",
+                         "unknown field 'spread/blood' (known: spread/stain, particles/cover, particles/accounting, "
+                         "particles/position, particles/velocity, particles/age)"));
 }
 
 TEST(ScenarioBadInput, OutputFieldOfAnEffectTheSceneDoesNotDeclare) {
@@ -472,6 +475,387 @@ TEST(ScenarioBadInput, TextureThatIsNotAPng) {
   write_text(texture, "these are notes, not pixels\n");
   EXPECT_TRUE(refused_at(kBase + "[tissue]\ntexture = \"" + texture.string() + "\"\n", kEnd + 1,
                          "tissue.texture", "cannot decode texture '" + texture.string() + "' as a PNG"));
+}
+
+// ---- [particles] and the particle keys of cuts and output -------------------------------------
+
+// A valid scene with an empty [particles] table last, so that text appended to it lands in
+// [particles] (kParticlesEnd is the line it starts on).
+const std::string kParticleBase =
+    "[scene]\n"              //  1
+    "width_px = 64\n"        //  2
+    "height_px = 48\n"       //  3
+    "width_mm = 16.0\n"      //  4
+    "height_mm = 12.0\n"     //  5
+    "duration_s = 0.5\n"     //  6
+    "frame_rate_hz = 30\n"   //  7
+    "[[cut]]\n"              //  8
+    "x_mm = 8.0\n"           //  9
+    "y_mm = 6.0\n"           // 10
+    "[particles]\n";         // 11
+constexpr int kParticlesEnd = 12;
+
+std::string particles_with(const std::string& lines) { return kParticleBase + lines; }
+
+// The column a refusal of `text` points at; 0 when it is not refused.
+int refused_column(const std::string& text) {
+  try {
+    parse_scenario(text, kPath);
+  } catch (const InputError& e) {
+    return e.where().column;
+  }
+  return 0;
+}
+
+// Every [particles] key set, one per line, and two cuts: one taking its flow from [particles],
+// one giving its own. Its contact (k = 2e5, c = 50, γ = 80) is stable while
+// 8·2e5·dt² + (16·50 − 2·80)·dt = 1.6e6·dt² + 640·dt < 4, up to
+// dt = (−640 + √(640² + 16·1.6e6)) / (2·1.6e6) = (−640 + √26009600) / 3.2e6 = (−640 + 5099.96) / 3.2e6
+//    = 1.394 ms; 25 Hz × 40 sub-steps is 1 ms, where the left side is 1.6 + 0.64 = 2.24.
+const std::string kFullParticles =
+    "[scene]\n"                                                //  1
+    "name = \"particles-probe\"\n"                             //  2
+    "width_px = 64\n"                                          //  3
+    "height_px = 48\n"                                         //  4
+    "width_mm = 16.0\n"                                        //  5
+    "height_mm = 12.0\n"                                       //  6
+    "duration_s = 1.0\n"                                       //  7
+    "frame_rate_hz = 25\n"                                     //  8
+    "\n"                                                       //  9
+    "[particles]\n"                                            // 10
+    "capacity = 4096\n"                                        // 11
+    "diameter_mm = 0.25\n"                                     // 12
+    "cell_mm = 0.5\n"                                          // 13
+    "max_per_cell = 6\n"                                       // 14
+    "rate_per_s = 800\n"                                       // 15
+    "bleed_s = 1.5\n"                                          // 16
+    "lifetime_s = 10\n"                                        // 17
+    "fade_s = 2.5\n"                                           // 18
+    "gravity_mm_s2 = [-100.5, 1500]\n"                         // 19
+    "drag_per_s = 80\n"                                        // 20
+    "stiffness_per_s2 = 2e5\n"                                 // 21
+    "damping_per_s = 50\n"                                     // 22
+    "max_speed_mm_s = 250\n"                                   // 23
+    "substeps = 40\n"                                          // 24  1 ms, well inside the 1.394 ms limit (below)
+    "jitter_mm = 0.02\n"                                       // 25
+    "velocity_mm_s = [3, -4.5]\n"                              // 26
+    "velocity_jitter_mm_s = 1.25\n"                            // 27
+    "\n"                                                       // 28
+    "[[cut]]\n"                                                // 29  its flow from [particles]
+    "x_mm = 8.0\n"                                             // 30
+    "y_mm = 2.0\n"                                             // 31
+    "\n"                                                       // 32
+    "[[cut]]\n"                                                // 33  its own
+    "x_mm = 4.0\n"                                             // 34
+    "y_mm = 3.0\n"                                             // 35
+    "start_s = 0.5\n"                                          // 36
+    "rate_per_s = 1200\n"                                      // 37
+    "bleed_s = 0.25\n"                                         // 38
+    "\n"                                                       // 39
+    "[output]\n"                                               // 40
+    "fields = [\"particles/cover\", \"particles/position\"]\n";  // 41
+
+TEST(ScenarioParticles, ReadsEveryParticleKey) {
+  const Scene scene = parse_scenario(kFullParticles, kPath);
+  ASSERT_TRUE(scene.particles.has_value());
+  const ParticleParams& p = *scene.particles;
+  EXPECT_EQ(p.capacity, 4096);
+  EXPECT_EQ(p.diameter_mm, 0.25);
+  EXPECT_EQ(p.cell_mm, 0.5);
+  EXPECT_EQ(p.max_per_cell, 6);
+  EXPECT_EQ(p.rate_per_s, 800.0);
+  EXPECT_EQ(p.bleed_s, 1.5);
+  EXPECT_EQ(p.lifetime_s, 10.0);
+  EXPECT_EQ(p.fade_s, 2.5);
+  EXPECT_EQ(p.gravity_x_mm_s2, -100.5);
+  EXPECT_EQ(p.gravity_y_mm_s2, 1500.0);
+  EXPECT_EQ(p.drag_per_s, 80.0);
+  EXPECT_EQ(p.stiffness_per_s2, 2e5);
+  EXPECT_EQ(p.damping_per_s, 50.0);
+  EXPECT_EQ(p.max_speed_mm_s, 250.0);
+  EXPECT_EQ(p.substeps, 40);
+  EXPECT_EQ(p.jitter_mm, 0.02);
+  EXPECT_EQ(p.velocity_x_mm_s, 3.0);
+  EXPECT_EQ(p.velocity_y_mm_s, -4.5);
+  EXPECT_EQ(p.velocity_jitter_mm_s, 1.25);
+  EXPECT_FALSE(scene.spread.has_value());  // [particles] declares the particle flow alone
+
+  ASSERT_EQ(scene.cuts.size(), 2u);
+  EXPECT_EQ(scene.cuts[0].rate_per_s, 800.0);  // from [particles]
+  EXPECT_EQ(scene.cuts[0].bleed_s, 1.5);       // from [particles]
+  EXPECT_EQ(scene.cuts[1].start_s, 0.5);
+  EXPECT_EQ(scene.cuts[1].rate_per_s, 1200.0);
+  EXPECT_EQ(scene.cuts[1].bleed_s, 0.25);
+
+  EXPECT_EQ(scene.output.fields, (std::vector<std::string>{"particles/cover", "particles/position"}));
+
+  EXPECT_EQ(scene.place_of("particles").line, 10);
+  EXPECT_EQ(scene.place_of("particles.capacity").line, 11);
+  EXPECT_EQ(scene.place_of("particles.gravity_mm_s2").line, 19);
+  EXPECT_EQ(scene.place_of("particles.max_speed_mm_s").line, 23);
+  EXPECT_EQ(scene.place_of("particles.substeps").line, 24);
+  EXPECT_EQ(scene.place_of("cut[1].rate_per_s").line, 37);
+}
+
+TEST(ScenarioParticles, AnEmptyTableTakesTheDocumentedDefaults) {
+  const Scene scene = parse_scenario(kParticleBase, kPath);
+  ASSERT_TRUE(scene.particles.has_value());
+  const ParticleParams& p = *scene.particles;
+  // The values docs/scenario-format.md lists, written out so that a changed default shows here.
+  EXPECT_EQ(p.capacity, 65536);
+  EXPECT_EQ(p.diameter_mm, 0.2);
+  EXPECT_EQ(p.cell_mm, 0.0);  // 0: the diameter
+  EXPECT_EQ(p.max_per_cell, 8);
+  EXPECT_EQ(p.rate_per_s, 500.0);
+  EXPECT_EQ(p.bleed_s, 2.0);
+  EXPECT_EQ(p.lifetime_s, 30.0);
+  EXPECT_EQ(p.fade_s, 1.0);
+  EXPECT_EQ(p.gravity_x_mm_s2, 0.0);
+  EXPECT_EQ(p.gravity_y_mm_s2, 1000.0);  // down the panel
+  EXPECT_EQ(p.drag_per_s, 100.0);
+  EXPECT_EQ(p.stiffness_per_s2, 4.0e5);
+  EXPECT_EQ(p.damping_per_s, 100.0);
+  EXPECT_EQ(p.max_speed_mm_s, 100.0);
+  EXPECT_EQ(p.substeps, 40);
+  EXPECT_EQ(p.jitter_mm, 0.05);
+  EXPECT_EQ(p.velocity_x_mm_s, 0.0);
+  EXPECT_EQ(p.velocity_y_mm_s, 0.0);
+  EXPECT_EQ(p.velocity_jitter_mm_s, 5.0);
+  // A cut that gives no flow of its own takes [particles]' defaults.
+  ASSERT_EQ(scene.cuts.size(), 1u);
+  EXPECT_EQ(scene.cuts[0].rate_per_s, 500.0);
+  EXPECT_EQ(scene.cuts[0].bleed_s, 2.0);
+  EXPECT_TRUE(scene.output.fields.empty());
+}
+
+TEST(ScenarioParticles, FadeDefaultsToTheLifetimeWhenTheLifetimeIsShorter) {
+  const Scene scene = parse_scenario(particles_with("lifetime_s = 0.5\n"), kPath);
+  EXPECT_EQ(scene.particles->lifetime_s, 0.5);
+  EXPECT_EQ(scene.particles->fade_s, 0.5);
+}
+
+TEST(ScenarioParticles, EachKeyOutOfRangeIsRefusedAtItsLine) {
+  struct Case {
+    const char* line;
+    const char* key;
+    const char* gist;
+  };
+  const Case cases[] = {
+      {"capacity = 0", "particles.capacity", "must be between 1 and 268435456 (got 0)"},
+      {"capacity = 268435457", "particles.capacity", "must be between 1 and 268435456 (got 268435457)"},
+      {"capacity = 1024.0", "particles.capacity", "expected an integer, got a floating-point number"},
+      {"diameter_mm = -1", "particles.diameter_mm", "must be greater than 0 and at most 100 (got -1)"},
+      {"diameter_mm = 0", "particles.diameter_mm", "must be greater than 0 and at most 100 (got 0)"},
+      {"diameter_mm = \"0.2\"", "particles.diameter_mm", "expected a number, got a string"},
+      {"cell_mm = 0.1", "particles.cell_mm", "must be between 0.2 and 10000 (got 0.1)"},  // the default diameter
+      {"max_per_cell = 0", "particles.max_per_cell", "must be between 1 and 1024 (got 0)"},
+      {"rate_per_s = -5", "particles.rate_per_s", "must be between 0 and 1e+08 (got -5)"},
+      {"rate_per_s = 1.5e8", "particles.rate_per_s", "must be between 0 and 1e+08 (got 1.5e+08)"},
+      {"volume_mm3_per_s = -1", "particles.volume_mm3_per_s", "must be between 0 and 1e+06 (got -1)"},
+      {"particle_volume_mm3 = 0", "particles.particle_volume_mm3",
+       "must be greater than 0 and at most 1e+06 (got 0)"},
+      {"bleed_s = -1", "particles.bleed_s", "must be between 0 and 86400 (got -1)"},
+      {"lifetime_s = 0", "particles.lifetime_s", "must be greater than 0 and at most 86400 (got 0)"},
+      {"lifetime_s = nan", "particles.lifetime_s", "must be a finite number (got nan)"},
+      {"fade_s = 0", "particles.fade_s", "must be greater than 0 and at most 30 (got 0)"},
+      // 30: the default lifetime.
+      {"fade_s = 30.5", "particles.fade_s", "must be greater than 0 and at most 30 (got 30.5)"},
+      {"drag_per_s = -1", "particles.drag_per_s", "must be between 0 and 1e+06 (got -1)"},
+      {"stiffness_per_s2 = 0", "particles.stiffness_per_s2", "must be greater than 0 and at most 1e+12 (got 0)"},
+      {"damping_per_s = -1", "particles.damping_per_s", "must be between 0 and 1e+06 (got -1)"},
+      {"max_speed_mm_s = 0", "particles.max_speed_mm_s", "must be greater than 0 and at most 100000 (got 0)"},
+      {"max_speed_mm_s = 2e5", "particles.max_speed_mm_s", "must be greater than 0 and at most 100000 (got 200000)"},
+      {"substeps = 0", "particles.substeps", "must be between 1 and 100000 (got 0)"},
+      {"substeps = 33.0", "particles.substeps", "expected an integer, got a floating-point number"},
+      {"jitter_mm = -0.1", "particles.jitter_mm", "must be between 0 and 100 (got -0.1)"},
+      {"velocity_jitter_mm_s = -1", "particles.velocity_jitter_mm_s", "must be between 0 and 100000 (got -1)"},
+  };
+  for (const Case& c : cases)
+    EXPECT_TRUE(refused_at(particles_with(std::string(c.line) + "\n"), kParticlesEnd, c.key, c.gist)) << c.line;
+  // The place points at the value, after `key = `.
+  EXPECT_EQ(refused_column(particles_with("capacity = 0\n")), 12);
+}
+
+TEST(ScenarioParticles, FadeLongerThanTheLifetime) {
+  EXPECT_TRUE(refused_at(particles_with("lifetime_s = 5\nfade_s = 6\n"), kParticlesEnd + 1, "particles.fade_s",
+                         "must be greater than 0 and at most 5 (got 6)"));
+  EXPECT_EQ(parse_scenario(particles_with("lifetime_s = 5\nfade_s = 5\n"), kPath).particles->fade_s, 5.0);
+}
+
+TEST(ScenarioParticles, CellSmallerThanTheDiameter) {
+  EXPECT_TRUE(refused_at(particles_with("diameter_mm = 0.5\ncell_mm = 0.4\n"), kParticlesEnd + 1,
+                         "particles.cell_mm", "must be between 0.5 and 10000 (got 0.4)"));
+  // A cell as large as a particle is the smallest allowed.
+  EXPECT_EQ(parse_scenario(particles_with("diameter_mm = 0.5\ncell_mm = 0.5\n"), kPath).particles->cell_mm, 0.5);
+}
+
+TEST(ScenarioParticles, VectorsNeedTwoFiniteNumbersAndNameTheBadComponent) {
+  const int line = kParticlesEnd;
+  EXPECT_TRUE(refused_at(particles_with("gravity_mm_s2 = [0]\n"), line, "particles.gravity_mm_s2",
+                         "expected [x, y], two numbers, got an array of 1 element"));
+  EXPECT_TRUE(refused_at(particles_with("gravity_mm_s2 = []\n"), line, "particles.gravity_mm_s2",
+                         "expected [x, y], two numbers, got an empty array"));
+  EXPECT_TRUE(refused_at(particles_with("velocity_mm_s = [1, 2, 3]\n"), line, "particles.velocity_mm_s",
+                         "expected [x, y], two numbers, got an array of 3 elements"));
+  EXPECT_TRUE(refused_at(particles_with("gravity_mm_s2 = 9.8\n"), line, "particles.gravity_mm_s2",
+                         "expected [x, y], two numbers, got a floating-point number"));
+  EXPECT_TRUE(refused_at(particles_with("gravity_mm_s2 = [0, \"down\"]\n"), line, "particles.gravity_mm_s2.y",
+                         "expected a number, got a string"));
+  EXPECT_TRUE(refused_at(particles_with("gravity_mm_s2 = [inf, 0]\n"), line, "particles.gravity_mm_s2.x",
+                         "must be a finite number (got inf)"));
+  EXPECT_TRUE(refused_at(particles_with("gravity_mm_s2 = [0, nan]\n"), line, "particles.gravity_mm_s2.y",
+                         "must be a finite number (got nan)"));
+  EXPECT_TRUE(refused_at(particles_with("gravity_mm_s2 = [0, 2e6]\n"), line, "particles.gravity_mm_s2.y",
+                         "must be between -1e+06 and 1e+06 (got 2e+06)"));
+  EXPECT_TRUE(refused_at(particles_with("velocity_mm_s = [0, -2e5]\n"), line, "particles.velocity_mm_s.y",
+                         "must be between -100000 and 100000 (got -200000)"));
+  // Two bad components: the first is the one refused, whatever order the compiler evaluates in.
+  EXPECT_TRUE(refused_at(particles_with("velocity_mm_s = [\"a\", \"b\"]\n"), line, "particles.velocity_mm_s.x",
+                         "expected a number, got a string"));
+  // A whole-vector problem points at the vector; a component's at the component.
+  EXPECT_EQ(refused_column(particles_with("gravity_mm_s2 = [0]\n")), 17);
+  EXPECT_EQ(refused_column(particles_with("gravity_mm_s2 = [0, \"down\"]\n")), 21);
+}
+
+TEST(ScenarioParticles, RateAndVolumeTogetherAreRefused) {
+  EXPECT_TRUE(refused_at(particles_with("rate_per_s = 100\nvolume_mm3_per_s = 2.0\nparticle_volume_mm3 = 0.004\n"),
+                         kParticlesEnd + 1, "particles.volume_mm3_per_s",
+                         "give either rate_per_s or volume_mm3_per_s, not both"));
+}
+
+TEST(ScenarioParticles, VolumeAndParticleVolumeNeedEachOther) {
+  EXPECT_TRUE(refused_at(particles_with("volume_mm3_per_s = 2.0\n"), kParticlesEnd, "particles.volume_mm3_per_s",
+                         "needs particle_volume_mm3 beside it"));
+  EXPECT_TRUE(refused_at(particles_with("particle_volume_mm3 = 0.004\n"), kParticlesEnd,
+                         "particles.particle_volume_mm3", "needs volume_mm3_per_s beside it"));
+}
+
+TEST(ScenarioParticles, VolumeOverParticleVolumeGivesTheRate) {
+  const Scene scene = parse_scenario(particles_with("volume_mm3_per_s = 2.0\nparticle_volume_mm3 = 0.004\n"), kPath);
+  EXPECT_DOUBLE_EQ(scene.particles->rate_per_s, 500.0);  // 2 mm³/s of 0.004 mm³ particles
+  EXPECT_DOUBLE_EQ(scene.cuts[0].rate_per_s, 500.0);     // and cuts take it as their default
+  // 1e5 mm³/s of 2⁻¹⁰ mm³ particles is 102,400,000 a second: more than the 1e8 allowed.
+  EXPECT_TRUE(refused_at(particles_with("volume_mm3_per_s = 1e5\nparticle_volume_mm3 = 0.0009765625\n"),
+                         kParticlesEnd, "particles.volume_mm3_per_s",
+                         "gives 1.024e+08 particles per second; at most 1e+08"));
+}
+
+// The contact is stable while 8k·dt² + (16c − 2γ)·dt < 4 (core/particle_model.h, z = 8 design
+// contacts). With stiffness k = 3.25e5/s², damping c = 100/s and drag γ = 100/s that is
+// 2.6e6·dt² + 1400·dt < 4, and at dt = 1 ms the left side is 2.6 + 1.4 = 4: the limit is exactly
+// 1 ms. In floating point too: b² + 16a = 1400² + 16·2.6e6 = 4.356e7 = 6600², so the root
+// (−1400 + 6600) / (2·2.6e6) = 5200 / 5.2e6 is one correctly rounded division, equal to 1/1000.
+// (The dashpot's own condition, 8c·dt < 2 + γ·dt, allows up to 2/(8c − γ) = 2/700 = 2.857 ms. The
+// old six-contact rule, 1.95e6·dt² + 1000·dt = 2.95 at 1 ms, would let every sub-step below pass.)
+const std::string kStiffContact = "stiffness_per_s2 = 3.25e5\n";  // damping and drag keep their 100/s
+
+TEST(ScenarioParticles, SubStepPastTheStabilityLimitIsRefusedWithTheLimitAndTheSubStepsNeeded) {
+  // 30 Hz × 33 sub-steps: 1/990 s = 1.0101 ms, past the limit (2.6e6·1.0203e-6 + 1.4·1.0101 =
+  // 2.6528 + 1.4141 = 4.067); n sub-steps stay inside it while 1/(30·n) < 1 ms, that is n > 33.3:
+  // at least 34.
+  EXPECT_TRUE(refused_at(particles_with(kStiffContact + "substeps = 33\n"), kParticlesEnd + 1, "particles.substeps",
+                         "a sub-step of 1.01 ms is past the contact model's stability limit of 1 ms (stiffness "
+                         "3.25e+05/s², damping 100/s, drag 100/s); use at least 34 sub-steps per frame, or a softer "
+                         "contact"));
+}
+
+TEST(ScenarioParticles, SubStepJustInsideTheStabilityLimitIsAccepted) {
+  // 34 sub-steps: 1/1020 s = 0.9804 ms; 2.6e6·9.612e-7 + 1.4·0.9804 = 2.499 + 1.373 = 3.872 < 4.
+  EXPECT_EQ(parse_scenario(particles_with(kStiffContact + "substeps = 34\n"), kPath).particles->substeps, 34);
+}
+
+TEST(ScenarioParticles, SubStepExactlyAtTheStabilityLimitIsRefused) {
+  // 50 Hz × 20 sub-steps: exactly 1 ms, where the left side is exactly 4. The condition is strict,
+  // so 21 are needed: 1/1050 s = 0.9524 ms, 2.6e6·9.070e-7 + 1.4·0.9524 = 2.358 + 1.333 = 3.692.
+  const std::string at_50_hz = with_line(particles_with(kStiffContact + "substeps = 20\n"), 7, "frame_rate_hz = 50");
+  EXPECT_TRUE(refused_at(at_50_hz, kParticlesEnd + 1, "particles.substeps",
+                         "a sub-step of 1 ms is past the contact model's stability limit of 1 ms (stiffness 3.25e+05/s², "
+                         "damping 100/s, drag 100/s); use at least 21 sub-steps per frame"));
+  EXPECT_EQ(parse_scenario(with_line(particles_with(kStiffContact + "substeps = 21\n"), 7, "frame_rate_hz = 50"),
+                           kPath).particles->substeps, 21);
+}
+
+TEST(ScenarioParticles, DefaultSubStepsAtALowFrameRateAreRefusedAtTheTable) {
+  // The default contact (k = 4e5, c = γ = 100): 3.2e6·dt² + 1400·dt < 4 up to
+  // dt = (−1400 + √(1400² + 16·3.2e6)) / (2·3.2e6) = (−1400 + √5.316e7) / 6.4e6
+  //    = (−1400 + 7291.09) / 6.4e6 = 0.92048 ms.
+  // At 25 Hz the default 40 sub-steps are 1/1000 s = 1 ms (3.2 + 1.4 = 4.6); inside needs
+  // n > 1/(25 · 0.92048 ms) = 43.46: 44 (1/1100 s = 0.9091 ms: 2.645 + 1.273 = 3.917; 43 would be
+  // 1/1075 s = 0.9302 ms: 2.769 + 1.302 = 4.071). substeps is not written, so the refusal is placed
+  // at the [particles] header.
+  const std::string at_25_hz = with_line(kParticleBase, 7, "frame_rate_hz = 25");
+  EXPECT_TRUE(refused_at(at_25_hz, 11, "particles.substeps",
+                         "a sub-step of 1 ms is past the contact model's stability limit of 0.9205 ms (stiffness "
+                         "4e+05/s², damping 100/s, drag 100/s); use at least 44 sub-steps per frame"));
+  EXPECT_TRUE(refused_at(with_line(particles_with("substeps = 43\n"), 7, "frame_rate_hz = 25"), kParticlesEnd,
+                         "particles.substeps", "use at least 44 sub-steps per frame"));
+  EXPECT_EQ(parse_scenario(with_line(particles_with("substeps = 44\n"), 7, "frame_rate_hz = 25"), kPath)
+                .particles->substeps, 44);
+}
+
+TEST(ScenarioParticles, ParticlesLargerThanThePanel) {
+  EXPECT_TRUE(refused_at(particles_with("diameter_mm = 12\n"), kParticlesEnd, "particles.diameter_mm",
+                         "particles of 12 mm do not fit in a 16 x 12 mm panel"));
+}
+
+TEST(ScenarioParticles, LifetimeTooLongToCountInSteps) {
+  // 86400 s × 30 Hz × 1000 sub-steps = 2.592e9 steps.
+  EXPECT_TRUE(refused_at(particles_with("lifetime_s = 86400\nsubsteps = 1000\n"), kParticlesEnd,
+                         "particles.lifetime_s", "a lifetime of 8.64e+04 s is 2.592e+09 steps; at most 2e9"));
+}
+
+TEST(ScenarioParticles, CollisionGridTooLargeIsPlacedAtTheTableWhenCellIsNotWritten) {
+  // A 10 m panel in 0.15 mm cells: 66667² = 4.44e9 cells.
+  const std::string huge = with_line(with_line(particles_with("diameter_mm = 0.15\n"), 4, "width_mm = 10000"), 5,
+                                     "height_mm = 10000");
+  EXPECT_TRUE(refused_at(huge, 11, "particles.cell_mm", "the collision grid would have 4.444e+09 cells; at most 4e9"));
+}
+
+TEST(ScenarioParticles, UnknownKeySuggestsTheNearest) {
+  EXPECT_TRUE(refused_at(particles_with("stifness_per_s2 = 1e5\n"), kParticlesEnd, "particles.stifness_per_s2",
+                         "unknown key; did you mean 'stiffness_per_s2'?"));
+  EXPECT_TRUE(refused_at(particles_with("gravity = [0, 9.8]\n"), kParticlesEnd, "particles.gravity",
+                         "unknown key (known here: capacity diameter_mm cell_mm"));
+}
+
+TEST(ScenarioParticles, CutRateAndBleedOverrideTheTablesDefaults) {
+  const Scene scene = parse_scenario(particles_with("rate_per_s = 300\nbleed_s = 4\n") +
+                                         "[[cut]]\nx_mm = 1.0\ny_mm = 1.0\nrate_per_s = 0\n"
+                                         "[[cut]]\nx_mm = 2.0\ny_mm = 2.0\nbleed_s = 0.5\n",
+                                     kPath);
+  ASSERT_EQ(scene.cuts.size(), 3u);
+  EXPECT_EQ(scene.cuts[0].rate_per_s, 300.0);  // from [particles]
+  EXPECT_EQ(scene.cuts[0].bleed_s, 4.0);
+  EXPECT_EQ(scene.cuts[1].rate_per_s, 0.0);    // a cut that does not bleed particles
+  EXPECT_EQ(scene.cuts[1].bleed_s, 4.0);
+  EXPECT_EQ(scene.cuts[2].rate_per_s, 300.0);
+  EXPECT_EQ(scene.cuts[2].bleed_s, 0.5);
+}
+
+TEST(ScenarioParticles, CutRateOrBleedOutOfRange) {
+  // The new [[cut]] starts on kParticlesEnd.
+  EXPECT_TRUE(refused_at(particles_with("[[cut]]\nx_mm = 1.0\ny_mm = 1.0\nrate_per_s = -1\n"), kParticlesEnd + 3,
+                         "cut[1].rate_per_s", "must be between 0 and 1e+08 (got -1)"));
+  EXPECT_TRUE(refused_at(particles_with("[[cut]]\nx_mm = 1.0\ny_mm = 1.0\nbleed_s = -0.5\n"), kParticlesEnd + 3,
+                         "cut[1].bleed_s", "must be between 0 and 86400 (got -0.5)"));
+}
+
+TEST(ScenarioParticles, CutFlowKeysWithoutParticlesAreRefusedAtTheirLine) {
+  EXPECT_TRUE(refused_at(with_line(kBase, 16, "rate_per_s = 100"), 16, "cut[1].rate_per_s",
+                         "has no effect: this scene declares no [particles]"));
+  EXPECT_TRUE(refused_at(with_line(kBase, 16, "bleed_s = 1.0"), 16, "cut[1].bleed_s",
+                         "has no effect: this scene declares no [particles]"));
+}
+
+TEST(ScenarioParticles, OutputFieldsNameParticleFieldsOnlyWithParticles) {
+  EXPECT_TRUE(refused_at(kBase + "fields = [\"particles/position\"]\n", kEnd, "output.fields[0]",
+                         "'particles/position' needs the [particles] effect, which this scene does not declare"));
+  const std::string all =
+      "[output]\nfields = [\"particles/cover\", \"particles/accounting\", \"particles/position\", "
+      "\"particles/velocity\", \"particles/age\"]\n";
+  EXPECT_EQ(parse_scenario(particles_with(all), kPath).output.fields,
+            (std::vector<std::string>{"particles/cover", "particles/accounting", "particles/position",
+                                      "particles/velocity", "particles/age"}));
 }
 
 // ---- load_scenario: the file itself -----------------------------------------------------------

@@ -1,0 +1,33 @@
+#pragma once
+// What the benchmarks in this folder share: the warm-up convention, the backend (or a visible skip
+// where CUDA cannot run), and the benchmark groups that main() registers.
+#include <benchmark/benchmark.h>
+
+#include <memory>
+#include <string>
+
+#include "core/backend.h"
+
+namespace bleedsim {
+
+constexpr int kWarmUpRuns = 3;
+
+// The backend to measure, or null after marking the benchmark skipped with the reason (a build
+// without CUDA, a machine without a device): the run goes on and the table says why.
+inline std::unique_ptr<Backend> backend_or_skip(BackendKind kind, benchmark::State& state) {
+  if (kind == BackendKind::cpu) return make_cpu_backend(0);
+  std::string why_not;
+  if (!cuda_device_available(&why_not)) {
+    state.SkipWithError(("CUDA not measured: " + why_not).c_str());
+    return nullptr;
+  }
+  return make_cuda_backend();
+}
+
+// bench/particle_bench.cpp: the particle step in the settled-pile state. The piles it settles are
+// kept between benchmarks of one size; release them before main() returns, while the CUDA runtime
+// is still up.
+void register_particle_benchmarks();
+void release_particle_benchmarks();
+
+}  // namespace bleedsim

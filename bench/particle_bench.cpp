@@ -1,0 +1,382 @@
+// The particle step's phases against the 1 ms haptic tick, in the state a running scene spends its
+// time in: a settled pile. Emit, bin (cell keys, stable sort, cell ranges, sorted copies), collide,
+// integrate and the whole step (emit + bin + collide + integrate), on CUDA at 65,536, 1,048,576 and
+// 4,194,304 particles and on the CPU reference at 65,536; and the grid step against an all-pairs
+// baseline (bench/all_pairs.h) at 65,536 on CUDA and 8,192 on the CPU.
+//
+// The scene is built here, not read from a file: the default ParticleParams at 30 Hz, a panel
+// N/24 diameters wide and twice the pile's height, the N particles (capacity N) on a hexagonal
+// lattice 24 rows deep at its bottom, at rest. It runs kSettleSteps steps (more, in chunks, while it
+// still flows: kinetic energy per particle above kFlowingShare of g·d) and only then is it timed;
+// the settled state is kept on the backend and restored before every timed run that changes it, so
+// each run starts from the same pile. One pile is settled per size and backend and shared by that
+// size's phases. With the default parameters the bottom rows of a pile this deep never come fully
+// to rest: the counters say how much still moves. docs/benchmarks.md ("Particles") says why, and
+// what each number means.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <exception>
+#include <functional>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "bench/all_pairs.h"
+#include "bench/bench_util.h"
+#include "core/backend.h"
+#include "core/particle_buffers.h"
+#include "core/particle_model.h"
+#include "core/particles.h"
+#include "core/scene.h"
+
+namespace bleedsim {
+namespace {
+
+constexpr double kHapticTickMs = 1.0;
+constexpr int kRows = 24;               // the pile's depth in particles
+constexpr int kSettleSteps = 600;       // 0.61 s of physics at 30 Hz × 33 sub-steps
+constexpr int kSettleChunk = 200;       // then more, while it still flows ...
+constexpr int kSettleMaxSteps = 1800;   // ... up to this many in all
+constexpr double kFlowingShare = 0.01;  // flowing: ½|v|² per particle above 1 % of g·d, the energy
+                                        // of a fall through one diameter (400 mm²/s² by default)
+constexpr double kMovingSpeed = 1.0;    // mm/s: "moving" in the moving_% counter (half of what
+                                        // gravity alone adds in one step)
+constexpr int kEmitters = 4;            // the emit burst: N/64 new particles from 4 cuts
+constexpr int kBurstDivisor = 64;
+constexpr int kIterations = 20;         // timed runs per repetition
+constexpr int kAllPairsIterations = 5;  // the O(N²) baseline is slow
+constexpr int kRepetitions = 5;
+
+enum class Work { emit, bin, collide, integrate, step, all_pairs_step };
+
+const char* name_of(Work work) {
+  switch (work) {
+    case Work::emit: return "emit";
+    case Work::bin: return "bin";
+    case Work::collide: return "collide";
+    case Work::integrate: return "integrate";
+    case Work::step: return "step";
+    case Work::all_pairs_step: return "all_pairs_step";
+  }
+  return "?";
+}
+
+// Slots per lattice row.
+int columns_for(int n) { return (n + kRows - 1) / kRows; }
+
+// The scene: default particle parameters, a panel that holds the pile with as much room above it.
+Scene pile_scene(int n) {
+  Scene scene;
+  scene.name = "settled pile (bench/particle_bench.cpp)";
+  scene.seed = 1;
+  scene.particles = ParticleParams{};
+  ParticleParams& p = *scene.particles;
+  p.capacity = n;
+  p.lifetime_s = 1.0e6;  // 9.9e8 steps: no particle expires while it is measured
+  const double pile_height_mm = (kRows - 1) * std::sqrt(3.0) / 2.0 * p.diameter_mm + p.diameter_mm;
+  // Even rows start at one radius from the left edge, odd rows at one diameter: the odd rows'
+  // last particle touches the right edge.
+  scene.domain.width_mm = columns_for(n) * p.diameter_mm + p.diameter_mm / 2.0;
+  scene.domain.height_mm = 2.0 * pile_height_mm;
+  // No pixels: draw is not timed here.
+  return scene;
+}
+
+// A pile of N particles on one backend: its scene, its arrays, the emit burst, and its settled
+// state (kept on the backend so restoring it costs a device copy, not a host upload).
+struct Pile {
+  std::unique_ptr<Backend> backend;
+  int n;
+  int threads;  // the CPU all-pairs baseline's, as many as the CPU backend's
+  Scene scene;
+  ParticleArgs args{};
+  Buffer position, velocity, age, scratch, emitters;
+  Buffer settled_position, settled_velocity, settled_age;
+  std::string problem;  // why it cannot be measured (empty when it can)
+  int settle_steps = 0;
+  double ke_per_particle = 0.0;  // ½|v|² per unit mass, mm²/s², mean over the particles
+  double max_speed = 0.0;        // mm/s
+  double moving_share = 0.0;     // of the particles, faster than kMovingSpeed
+  double bottom_overlap = 0.0;   // mm: the bottom row's overlap with the row above, mean
+
+  Pile(std::unique_ptr<Backend> b, int count)
+      : backend(std::move(b)), n(count), threads(int(std::max(1u, std::thread::hardware_concurrency()))),
+        scene(pile_scene(count)) {
+    problem = particle_settings_problem(scene).message;
+    if (!problem.empty()) return;
+    const ParticleModel model = make_particle_model(scene);
+    args.model = model;
+    ParticleArrays& a = args.arrays;
+    a.capacity = n;
+    const std::size_t pairs = 2 * std::size_t(n) * sizeof(float), words = std::size_t(n) * sizeof(std::uint32_t);
+    position = backend->allocate(pairs);
+    velocity = backend->allocate(pairs);
+    age = backend->allocate(words);
+    a.position = position.as<float>();
+    a.velocity = velocity.as<float>();
+    a.age = age.as<std::uint32_t>();
+    const std::size_t sort_bytes = backend->particle_sort_scratch_bytes(n, model.key_bits);
+    scratch = backend->allocate(particle_scratch_bytes(model, n, sort_bytes));
+    point_particle_scratch(a, model, scratch.data(), sort_bytes);
+    clear_particles(*backend, a);  // every slot at rest; scratch defined
+
+    // The lattice: slot s in row s / columns (row 0 at the bottom), spacing one diameter, age 0.
+    const int columns = columns_for(n);
+    const double d = scene.particles->diameter_mm, r = d / 2.0, row_mm = std::sqrt(3.0) / 2.0 * d;
+    const double bottom = scene.domain.height_mm - r;
+    std::vector<float> xy(2 * std::size_t(n));
+    for (int s = 0; s < n; ++s) {
+      const int row = s / columns, column = s % columns;
+      xy[2 * s] = float(r + column * d + (row % 2 ? r : 0.0));
+      xy[2 * s + 1] = float(bottom - row * row_mm);
+    }
+    backend->upload(a.position, xy.data(), pairs);
+    const std::vector<std::uint32_t> ages(n, 0u);
+    backend->upload(a.age, ages.data(), words);
+
+    // The burst: N/64 new particles (ids N, N + 1, …, so they overwrite the oldest slots, the
+    // bottom of the pile) from kEmitters cuts spread over the free space above the pile.
+    const int burst = n / kBurstDivisor;
+    std::vector<Emitter> cuts;
+    for (int e = 0; e < kEmitters; ++e) {
+      const int first = burst * e / kEmitters, next = burst * (e + 1) / kEmitters;
+      cuts.push_back({float(scene.domain.width_mm * (2 * e + 1) / (2 * kEmitters)),
+                      float(scene.domain.height_mm / 4.0), std::uint64_t(n) + std::uint64_t(first),
+                      std::uint32_t(first), std::uint32_t(next - first)});
+    }
+    emitters = backend->allocate(cuts.size() * sizeof(Emitter));
+    backend->upload(emitters.data(), cuts.data(), emitters.bytes());
+    args.emitters = emitters.as<const Emitter>();
+    args.emitter_count = kEmitters;
+    args.new_count = burst;
+
+    settle();
+    settled_position = backend->allocate(pairs);
+    settled_velocity = backend->allocate(pairs);
+    settled_age = backend->allocate(words);
+    copy(settled_position.data(), a.position, pairs);
+    copy(settled_velocity.data(), a.velocity, pairs);
+    copy(settled_age.data(), a.age, words);
+    backend->synchronize();
+  }
+
+  void emit() { backend->particles(ParticlePhase::emit, args); }
+  void bin() { backend->particles(ParticlePhase::bin, args); }
+  void collide() { backend->particles(ParticlePhase::collide, args); }
+  void integrate() { backend->particles(ParticlePhase::integrate, args); }
+  void step() { emit(); bin(); collide(); integrate(); }
+  void all_pairs_collide() {
+    if (backend->kind() == BackendKind::cpu) {
+      all_pairs_collide_cpu(args.arrays, args.model, threads);
+      return;
+    }
+#if BLEEDSIM_HAVE_CUDA
+    all_pairs_collide_cuda(args.arrays, args.model);
+#endif
+  }
+  void all_pairs_step() { emit(); all_pairs_collide(); integrate(); }
+
+  // Back to the settled pile: the state a phase changes (positions, velocities, ages).
+  void restore() {
+    const std::size_t pairs = 2 * std::size_t(n) * sizeof(float), words = std::size_t(n) * sizeof(std::uint32_t);
+    copy(args.arrays.position, settled_position.data(), pairs);
+    copy(args.arrays.velocity, settled_velocity.data(), pairs);
+    copy(args.arrays.age, settled_age.data(), words);
+  }
+
+ private:
+  void copy(void* dst, const void* src, std::size_t bytes) {
+    if (backend->kind() == BackendKind::cpu) {
+      std::memcpy(dst, src, bytes);
+      return;
+    }
+#if BLEEDSIM_HAVE_CUDA
+    copy_device_to_device_cuda(dst, src, bytes);
+#endif
+  }
+
+  void settle() {
+    const auto run = [&](int steps) {
+      for (int s = 0; s < steps; ++s) {
+        bin();
+        collide();
+        integrate();
+      }
+      settle_steps += steps;
+      measure();
+    };
+    const ParticleParams& p = *scene.particles;
+    const double flowing = kFlowingShare * std::hypot(p.gravity_x_mm_s2, p.gravity_y_mm_s2) * p.diameter_mm;
+    run(kSettleSteps);
+    while (ke_per_particle > flowing && settle_steps < kSettleMaxSteps) run(kSettleChunk);
+    if (ke_per_particle > flowing)
+      problem = "the pile did not settle in " + std::to_string(settle_steps) + " steps: kinetic energy " +
+                std::to_string(ke_per_particle) + " mm²/s² per particle (at most " + std::to_string(flowing) +
+                "), fastest " + std::to_string(max_speed) + " mm/s";
+    args.step = std::uint64_t(settle_steps);  // the burst's jitter: as if emitted in the next step
+  }
+
+  void measure() {
+    const std::size_t count = 2 * std::size_t(n);
+    std::vector<float> v(count), xy(count);
+    backend->download(v.data(), args.arrays.velocity, count * sizeof(float));
+    backend->download(xy.data(), args.arrays.position, count * sizeof(float));
+    double energy = 0.0, fastest = 0.0;
+    int moving = 0;
+    for (int s = 0; s < n; ++s) {
+      const double speed_sq = double(v[2 * s]) * v[2 * s] + double(v[2 * s + 1]) * v[2 * s + 1];
+      energy += 0.5 * speed_sq;
+      fastest = std::max(fastest, speed_sq);
+      moving += speed_sq > kMovingSpeed * kMovingSpeed;
+    }
+    ke_per_particle = energy / n;
+    max_speed = std::sqrt(fastest);
+    moving_share = double(moving) / n;
+    // Each bottom-row particle's deepest overlap with the row above (its lattice neighbours).
+    const int columns = columns_for(n);
+    const double d = scene.particles->diameter_mm;
+    double overlap = 0.0;
+    int counted = 0;
+    for (int j = 0; j < columns && j < n; ++j) {
+      double nearest = INFINITY;
+      for (int k = std::max(0, j - 2); k <= std::min(columns - 1, j + 2); ++k) {
+        const int other = columns + k;
+        if (other >= n) continue;
+        const double dx = double(xy[2 * j]) - xy[2 * other], dy = double(xy[2 * j + 1]) - xy[2 * other + 1];
+        nearest = std::min(nearest, std::sqrt(dx * dx + dy * dy));
+      }
+      if (nearest == INFINITY) continue;
+      overlap += std::max(0.0, d - nearest);
+      ++counted;
+    }
+    bottom_overlap = counted ? overlap / counted : 0.0;
+  }
+};
+
+// One pile at a time: the benchmarks of a size and backend run one after another and share it;
+// the next size frees it before settling its own.
+std::unique_ptr<Pile>& cached_pile() {
+  static std::unique_ptr<Pile> pile;
+  return pile;
+}
+
+Pile* pile_or_skip(BackendKind kind, int n, benchmark::State& state) {
+  std::unique_ptr<Pile>& pile = cached_pile();
+  if (pile && pile->backend->kind() == kind && pile->n == n) return pile.get();
+  pile.reset();
+  std::unique_ptr<Backend> backend = backend_or_skip(kind, state);
+  if (!backend) return nullptr;
+  pile = std::make_unique<Pile>(std::move(backend), n);
+  return pile.get();
+}
+
+// Milliseconds of `work` over the repetition's runs, each after `prepare` (not timed).
+double time_runs(benchmark::State& state, Pile& pile, const std::function<void()>& prepare,
+                 const std::function<void()>& work) {
+  for (int i = 0; i < kWarmUpRuns; ++i) {
+    prepare();
+    work();
+  }
+  double total_ms = 0.0;
+  for (auto _ : state) {
+    prepare();
+    const double ms = pile.backend->time_ms(work);
+    state.SetIterationTime(ms / 1000.0);
+    total_ms += ms;
+  }
+  return total_ms / double(state.iterations());
+}
+
+// The grid step's median over kIterations runs, for the all-pairs benchmark's comparison.
+double grid_step_ms(Pile& pile) {
+  std::vector<double> ms;
+  for (int i = 0; i < kWarmUpRuns + kIterations; ++i) {
+    pile.restore();
+    const double t = pile.backend->time_ms([&] { pile.step(); });
+    if (i >= kWarmUpRuns) ms.push_back(t);
+  }
+  std::nth_element(ms.begin(), ms.begin() + ms.size() / 2, ms.end());
+  return ms[ms.size() / 2];
+}
+
+void time_particles(benchmark::State& state, BackendKind kind, int n, Work work) {
+  try {
+    Pile* pile = pile_or_skip(kind, n, state);
+    if (!pile) return;
+    if (!pile->problem.empty()) {
+      state.SkipWithError(("particles not measured: " + pile->problem).c_str());
+      return;
+    }
+    // A consistent start: the settled pile, binned, its contacts known (collide and integrate
+    // read what bin and collide leave).
+    pile->restore();
+    pile->bin();
+    pile->collide();
+    const std::function<void()> restore = [pile] { pile->restore(); }, nothing = [] {};
+    double ms = 0.0, grid_ms = 0.0;
+    switch (work) {
+      case Work::emit: ms = time_runs(state, *pile, restore, [pile] { pile->emit(); }); break;
+      case Work::bin: ms = time_runs(state, *pile, nothing, [pile] { pile->bin(); }); break;
+      case Work::collide: ms = time_runs(state, *pile, nothing, [pile] { pile->collide(); }); break;
+      case Work::integrate: ms = time_runs(state, *pile, restore, [pile] { pile->integrate(); }); break;
+      case Work::step: ms = time_runs(state, *pile, restore, [pile] { pile->step(); }); break;
+      case Work::all_pairs_step:
+        grid_ms = grid_step_ms(*pile);
+        ms = time_runs(state, *pile, restore, [pile] { pile->all_pairs_step(); });
+        break;
+    }
+    pile->restore();
+    pile->backend->synchronize();
+    state.counters["ms"] = ms;
+    state.counters["haptic_tick_%"] = 100.0 * ms / kHapticTickMs;
+    state.counters["particle_steps/s"] = double(n) * 1e3 / ms;
+    if (work == Work::emit) state.counters["new_particles"] = pile->args.new_count;
+    if (work == Work::all_pairs_step) {
+      state.counters["grid_step_ms"] = grid_ms;
+      state.counters["all_pairs/grid"] = ms / grid_ms;
+    }
+    state.counters["ke_per_particle"] = pile->ke_per_particle;
+    state.counters["max_speed_mm_s"] = pile->max_speed;
+    state.counters["moving_%"] = 100.0 * pile->moving_share;
+    state.counters["bottom_overlap_mm"] = pile->bottom_overlap;
+    state.counters["settle_steps"] = pile->settle_steps;
+    state.SetLabel(pile->backend->device_name());
+  } catch (const std::exception& e) {
+    state.SkipWithError((std::string("particles not measured: ") + e.what()).c_str());
+  }
+}
+
+void register_case(BackendKind kind, int n, Work work) {
+  const std::string name = std::string("Particle/") + to_string(kind) + "/" + name_of(work) + "/" + std::to_string(n);
+  benchmark::RegisterBenchmark(name.c_str(), [kind, n, work](benchmark::State& state) {
+    time_particles(state, kind, n, work);
+  })
+      ->UseManualTime()
+      ->Iterations(work == Work::all_pairs_step ? kAllPairsIterations : kIterations)
+      ->Unit(benchmark::kMillisecond)
+      ->Repetitions(kRepetitions)
+      ->ReportAggregatesOnly(true)
+      ->DisplayAggregatesOnly(true);
+}
+
+}  // namespace
+
+void register_particle_benchmarks() {
+  // Grouped by backend and size, so each pile is settled once.
+  const Work phases[] = {Work::emit, Work::bin, Work::collide, Work::integrate, Work::step};
+  for (const Work work : phases) register_case(BackendKind::cpu, 65536, work);
+  // The CPU baseline at a size where O(N²) runs in seconds, beside the grid step at that size.
+  register_case(BackendKind::cpu, 8192, Work::step);
+  register_case(BackendKind::cpu, 8192, Work::all_pairs_step);
+  for (const int n : {65536, 1048576, 4194304}) {
+    for (const Work work : phases) register_case(BackendKind::cuda, n, work);
+    if (n == 65536) register_case(BackendKind::cuda, n, Work::all_pairs_step);
+  }
+}
+
+void release_particle_benchmarks() { cached_pile().reset(); }
+
+}  // namespace bleedsim
