@@ -77,7 +77,7 @@ def particle_settings(scenario):
     """The [particles] table with its documented defaults (core/scene.h, docs/scenario-format.md)."""
     p = scenario["particles"]
     fps = scenario["scene"].get("frame_rate_hz", 30.0)
-    substeps = p.get("substeps", 33)
+    substeps = p.get("substeps", 40)
     steps_per_s = fps * substeps
     if "volume_mm3_per_s" in p:
         rate = p["volume_mm3_per_s"] / p["particle_volume_mm3"]
