@@ -111,6 +111,8 @@ struct Pile {
     args.model = model;
     ParticleArrays& a = args.arrays;
     a.capacity = n;
+    args.live_count = n;  // the ring is full: every slot, from any first slot, is live
+    args.first_live_slot = 0;
     const std::size_t pairs = 2 * std::size_t(n) * sizeof(float), words = std::size_t(n) * sizeof(std::uint32_t);
     position = backend->allocate(pairs);
     velocity = backend->allocate(pairs);

@@ -127,16 +127,23 @@ void ParticleStage::emit(const Scene& scene, const State& state, Backend& backen
   backend.particles(ParticlePhase::emit, args_);
 }
 
+void ParticleStage::track_live_particles() {
+  args_.live_count = int(accounting_.counts().alive);
+  args_.first_live_slot = std::uint32_t(accounting_.oldest_alive() % std::uint64_t(args_.arrays.capacity));
+}
+
 void ParticleStage::run(const Scene& scene, State& state, Backend& backend) {
   const std::uint64_t substeps = std::uint64_t(scene.particles->substeps);
   for (std::uint64_t s = 0; s < substeps; ++s) {
     const std::uint64_t step = std::uint64_t(state.frames_done) * substeps + s;
     emit(scene, state, backend, step);
+    track_live_particles();
     backend.particles(ParticlePhase::bin, args_);
     backend.particles(ParticlePhase::collide, args_);
     backend.particles(ParticlePhase::integrate, args_);
     accounting_.end_step(step);
   }
+  track_live_particles();  // the draw sees those that lived through the last step
   backend.particles(ParticlePhase::draw, args_);
   const ParticleCounts counts = accounting_.counts();
   backend.upload(counts_->data.data(), &counts, sizeof counts);

@@ -22,6 +22,8 @@ class ParticleStage final : public Stage {
 
  private:
   void emit(const Scene& scene, const State& state, Backend& backend, std::uint64_t step);
+  // Points the step at the live particles, from the accounting (the ids in [oldest alive, emitted)).
+  void track_live_particles();
 
   ParticleArgs args_{};
   Field* counts_ = nullptr;  // the accounting, uploaded each frame

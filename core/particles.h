@@ -95,12 +95,21 @@ struct ParticleArgs {
   int emitter_count;
   int new_count;            // emit: at most capacity
   std::uint64_t step;       // emit: the step number, for the jitter
+  // The live particles, ids [oldest alive, emitted), fill live_count slots from first_live_slot
+  // on, wrapping: every other slot is empty. Loops over particles need visit only these.
+  std::uint32_t first_live_slot;
+  int live_count;
   PixelGrid grid;           // draw
   float* cover;             // draw: grid.width × grid.height
 };
 
 BLEEDSIM_HD inline bool is_alive(const ParticleModel& m, std::uint32_t age) {
   return age < m.lifetime_steps;
+}
+
+// The t-th live slot, t < live_count.
+BLEEDSIM_HD inline int live_slot(const ParticleArgs& a, int t) {
+  return int((std::uint64_t(a.first_live_slot) + std::uint64_t(t)) % std::uint64_t(a.arrays.capacity));
 }
 
 BLEEDSIM_HD inline float clamp_float(float v, float low, float high) {

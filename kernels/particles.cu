@@ -25,26 +25,29 @@ __global__ void cell_key_kernel(ParticleArrays p, ParticleModel m) {
   if (slot < p.capacity) p.cell_key[slot] = cell_key_of(p, m, slot);
 }
 
-__global__ void cell_range_kernel(ParticleArrays p, ParticleModel m) {
+// The live particles sort first (empty slots carry the largest key): only they need ranges,
+// sorted copies and contacts.
+__global__ void cell_range_kernel(ParticleArrays p, ParticleModel m, int live) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i >= p.capacity) return;
+  if (i >= live) return;
   mark_cell_range(p, m, i);
   gather_sorted(p, i);
 }
 
-__global__ void collide_kernel(ParticleArrays p, ParticleModel m) {
+__global__ void collide_kernel(ParticleArrays p, ParticleModel m, int live) {
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i < p.capacity) collide_particle(p, m, i);
+  if (i < live) collide_particle(p, m, i);
 }
 
-__global__ void integrate_kernel(ParticleArrays p, ParticleModel m) {
-  const int slot = blockIdx.x * blockDim.x + threadIdx.x;
-  if (slot < p.capacity) integrate_particle(p, m, slot);
+__global__ void integrate_kernel(ParticleArgs a) {
+  const int t = blockIdx.x * blockDim.x + threadIdx.x;
+  if (t < a.live_count) integrate_particle(a.arrays, a.model, live_slot(a, t));
 }
 
 __global__ void draw_kernel(ParticleArgs a) {
-  const int slot = blockIdx.x * blockDim.x + threadIdx.x;
-  if (slot >= a.arrays.capacity) return;
+  const int t = blockIdx.x * blockDim.x + threadIdx.x;
+  if (t >= a.live_count) return;
+  const int slot = live_slot(a, t);
   // Alphas are positive floats, whose bit patterns order as the values do: an integer maximum
   // on the bits is the float maximum, and integer atomics give the same result in any order.
   int* cover = reinterpret_cast<int*>(a.cover);
@@ -67,7 +70,8 @@ void bin(const ParticleArgs& a) {
   // Empty cells keep start = end = 0: an empty range, as on the CPU.
   BLEEDSIM_CUDA_CHECK(cudaMemsetAsync(p.cell_start, 0, cells * sizeof(std::uint32_t)));
   BLEEDSIM_CUDA_CHECK(cudaMemsetAsync(p.cell_end, 0, cells * sizeof(std::uint32_t)));
-  cell_range_kernel<<<blocks_for(p.capacity), kThreads>>>(p, a.model);
+  if (a.live_count == 0) return;
+  cell_range_kernel<<<blocks_for(a.live_count), kThreads>>>(p, a.model, a.live_count);
   check_launch("cell_range_kernel");
 }
 
@@ -84,7 +88,7 @@ std::size_t particle_sort_scratch_cuda(int capacity, int key_bits) {
 }
 
 void particles_cuda(ParticlePhase phase, const ParticleArgs& a) {
-  const int n = a.arrays.capacity;
+  const int n = a.live_count;
   switch (phase) {
     case ParticlePhase::emit:
       if (a.new_count == 0) return;
@@ -95,15 +99,18 @@ void particles_cuda(ParticlePhase phase, const ParticleArgs& a) {
       bin(a);
       break;
     case ParticlePhase::collide:
-      collide_kernel<<<blocks_for(n), kThreads>>>(a.arrays, a.model);
+      if (n == 0) return;
+      collide_kernel<<<blocks_for(n), kThreads>>>(a.arrays, a.model, n);
       check_launch("collide_kernel");
       break;
     case ParticlePhase::integrate:
-      integrate_kernel<<<blocks_for(n), kThreads>>>(a.arrays, a.model);
+      if (n == 0) return;
+      integrate_kernel<<<blocks_for(n), kThreads>>>(a);
       check_launch("integrate_kernel");
       break;
     case ParticlePhase::draw:
       BLEEDSIM_CUDA_CHECK(cudaMemsetAsync(a.cover, 0, std::size_t(a.grid.width) * a.grid.height * sizeof(float)));
+      if (n == 0) return;
       draw_kernel<<<blocks_for(n), kThreads>>>(a);
       check_launch("draw_kernel");
       break;

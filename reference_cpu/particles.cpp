@@ -14,43 +14,52 @@ constexpr int kParticlesPerThread = 4096;
 
 int threads_for(int count, int threads) { return std::max(1, std::min(threads, count / kParticlesPerThread)); }
 
+// Calls fn(slot) for every live slot in ascending slot order: the order a stable sort keeps ties in.
+template <class Fn>
+void for_live_slots_in_order(const ParticleArgs& a, const Fn& fn) {
+  const int capacity = a.arrays.capacity, first = int(a.first_live_slot);
+  const int wrapped = std::max(0, first + a.live_count - capacity);
+  for (int slot = 0; slot < wrapped; ++slot) fn(slot);
+  for (int slot = first; slot < first + a.live_count - wrapped; ++slot) fn(slot);
+}
+
+// Only the live slots are sorted: they come first in the GPU's sort of every slot too (empty
+// slots carry the largest key), so sorted positions [0, live_count) agree between the backends.
 void bin(const ParticleArgs& a) {
   const ParticleArrays& p = a.arrays;
   const ParticleModel& m = a.model;
-  const std::uint32_t cells = std::uint32_t(m.cells_x) * std::uint32_t(m.cells_y);
+  const std::uint32_t cells = sentinel_key(m);
   // Count per cell, then each cell's start; cell_end serves as the write cursor and ends as the end.
   std::fill(p.cell_end, p.cell_end + cells, 0u);
-  for (int slot = 0; slot < p.capacity; ++slot) {
+  for_live_slots_in_order(a, [&](int slot) {
     p.cell_key[slot] = cell_key_of(p, m, slot);
-    if (p.cell_key[slot] != cells) ++p.cell_end[p.cell_key[slot]];
-  }
+    ++p.cell_end[p.cell_key[slot]];
+  });
   std::uint32_t at = 0;
   for (std::uint32_t c = 0; c < cells; ++c) {
     p.cell_start[c] = at;
     at += p.cell_end[c];
     p.cell_end[c] = p.cell_start[c];
   }
-  std::uint32_t dead_at = at;  // slots with no particle follow, in slot order, as a stable sort leaves them
-  for (int slot = 0; slot < p.capacity; ++slot) {
-    const std::uint32_t key = p.cell_key[slot];
-    const std::uint32_t to = key != cells ? p.cell_end[key]++ : dead_at++;
-    p.sorted_key[to] = key;
+  for_live_slots_in_order(a, [&](int slot) {
+    const std::uint32_t to = p.cell_end[p.cell_key[slot]]++;
+    p.sorted_key[to] = p.cell_key[slot];
     p.sorted_slot[to] = std::uint32_t(slot);
-  }
-  for (int i = 0; i < p.capacity; ++i) gather_sorted(p, i);
+  });
+  for (int i = 0; i < a.live_count; ++i) gather_sorted(p, i);
 }
 
 void draw(const ParticleArgs& a) {
   std::fill(a.cover, a.cover + std::size_t(a.grid.width) * std::size_t(a.grid.height), 0.0f);
-  for (int slot = 0; slot < a.arrays.capacity; ++slot)
-    draw_particle(a.arrays, a.model, a.grid, slot,
+  for (int t = 0; t < a.live_count; ++t)
+    draw_particle(a.arrays, a.model, a.grid, live_slot(a, t),
                   [&](std::size_t pixel, float alpha) { a.cover[pixel] = std::max(a.cover[pixel], alpha); });
 }
 
 }  // namespace
 
 void particles_cpu(ParticlePhase phase, const ParticleArgs& a, int threads) {
-  const int n = a.arrays.capacity;
+  const int n = a.live_count;
   switch (phase) {
     case ParticlePhase::emit:
       for (int t = 0; t < a.new_count; ++t) emit_particle(a, t);
@@ -62,7 +71,7 @@ void particles_cpu(ParticlePhase phase, const ParticleArgs& a, int threads) {
       parallel_rows(n, threads_for(n, threads), [&](int i) { collide_particle(a.arrays, a.model, i); });
       break;
     case ParticlePhase::integrate:
-      parallel_rows(n, threads_for(n, threads), [&](int slot) { integrate_particle(a.arrays, a.model, slot); });
+      parallel_rows(n, threads_for(n, threads), [&](int t) { integrate_particle(a.arrays, a.model, live_slot(a, t)); });
       break;
     case ParticlePhase::draw:
       draw(a);

@@ -210,6 +210,8 @@ double largest_late_speed(double dt_fraction, int steps) {
   ParticleArgs args{};
   args.model = m;
   args.arrays = a;
+  args.live_count = n;  // every slot holds a particle
+  args.first_live_slot = 0;
   double late = 0.0;
   for (int s = 0; s < steps; ++s) {
     for (ParticlePhase phase : {ParticlePhase::bin, ParticlePhase::collide, ParticlePhase::integrate})
