@@ -48,7 +48,7 @@ struct StageScene {
   }
   void spread() { backend->spread({cuts.as<const SpreadCut>(), cut_count, grid, stain.as<float>()}); }
   void blend() {
-    backend->blend({tissue.as<const std::uint8_t>(), stain.as<const float>(), nullptr, grid.width, grid.height,
+    backend->blend({tissue.as<const std::uint8_t>(), stain.as<const float>(), nullptr, nullptr, grid.width, grid.height,
                     frame.as<std::uint8_t>()});
   }
 };

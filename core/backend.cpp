@@ -34,6 +34,11 @@ void Backend::particles(ParticlePhase phase, const ParticleArgs& args) {
   run_particles(phase, args);
 }
 
+void Backend::splat(const SplatArgs& args) {
+  ++launches_["splat"];
+  run_splat(args);
+}
+
 std::uint64_t Backend::launches(const std::string& stage) const {
   const auto it = launches_.find(stage);
   return it == launches_.end() ? 0 : it->second;

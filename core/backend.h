@@ -11,6 +11,7 @@
 #include "core/blend.h"
 #include "core/buffer.h"
 #include "core/particles.h"
+#include "core/splat.h"
 #include "core/spread.h"
 
 namespace bleedsim {
@@ -39,6 +40,7 @@ class Backend {
   void spread(const SpreadArgs& args);
   void blend(const BlendArgs& args);
   void particles(ParticlePhase phase, const ParticleArgs& args);  // counted as "particles"
+  void splat(const SplatArgs& args);
   // Temporary storage the particle sort needs here (none on the CPU, CUB's on the GPU).
   virtual std::size_t particle_sort_scratch_bytes(int capacity, int key_bits) const = 0;
 
@@ -51,6 +53,7 @@ class Backend {
   virtual void run_spread(const SpreadArgs& args) = 0;
   virtual void run_blend(const BlendArgs& args) = 0;
   virtual void run_particles(ParticlePhase phase, const ParticleArgs& args) = 0;
+  virtual void run_splat(const SplatArgs& args) = 0;
 
  private:
   std::map<std::string, std::uint64_t> launches_;

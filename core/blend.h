@@ -1,7 +1,7 @@
 #pragma once
 // Compositing the blood over the tissue into the frame (report §2.2.1, its HLSL pass): the stain
 // is taken out of the tissue's green and blue, so stained tissue reads red with the stain's soft
-// edge; red and alpha pass through. Particles then cover it. Bytes map to [0, 1] as v/255 and back with round-half-up.
+// edge; red and alpha pass through. The particles' film of blood (core/splat.h) then lies over it. Bytes map to [0, 1] as v/255 and back with round-half-up.
 #include <cmath>
 #include <cstdint>
 
@@ -17,23 +17,37 @@ BLEEDSIM_HD inline std::uint8_t byte_from_unit(float v) {
   return static_cast<std::uint8_t>(clamped * 255.0f + 0.5f);
 }
 
-// Particles, drawn plainly until the screen-space stages give blood its real look: flat blood red
-// over the stained tissue, as opaque as the cover (a particle's fade).
-constexpr float kParticleRed = 0.45f, kParticleGreen = 0.02f, kParticleBlue = 0.03f;
+// Light crossing a film of blood h mm thick keeps exp(−a_c·h) of channel c (Beer–Lambert): blood
+// absorbs green and blue strongly and red weakly, so a thin film reads bright red over the tissue
+// and a pool darkens towards black.
+constexpr float kBloodAbsorbsRedPerMm = 4.0f, kBloodAbsorbsGreenPerMm = 40.0f, kBloodAbsorbsBluePerMm = 45.0f;
 
-BLEEDSIM_HD inline std::uint8_t over(float below, float blood, float cover) {
-  return byte_from_unit(below * (1.0f - cover) + blood * cover);
+// exp(−x) from a table computed once on the host (transmission_table()), linearly interpolated:
+// expf differs between the host's libm and the device, a table read the same way does not.
+constexpr int kTransmissionStepsPerUnit = 64;
+constexpr int kTransmissionEntries = 32 * kTransmissionStepsPerUnit + 1;  // x in [0, 32]
+
+BLEEDSIM_HD inline float transmitted(const float* table, float optical_depth) {
+  const float s = optical_depth * float(kTransmissionStepsPerUnit);
+  if (!(s < float(kTransmissionEntries - 1))) return table[kTransmissionEntries - 1];
+  const float k = floorf(s);
+  const int i = int(k);
+  return table[i] + (table[i + 1] - table[i]) * (s - k);
 }
 
-BLEEDSIM_HD inline void blend_pixel(const std::uint8_t* tissue_rgba, float stain, float cover,
-                                    std::uint8_t* frame_rgba) {
+BLEEDSIM_HD inline void blend_pixel(const std::uint8_t* tissue_rgba, float stain, float thickness_mm,
+                                    const float* transmission, std::uint8_t* frame_rgba) {
   const float green = unit_from_byte(tissue_rgba[1]) - stain;
   const float blue = unit_from_byte(tissue_rgba[2]) - stain;
-  if (cover > 0.0f) {
-    frame_rgba[0] = over(unit_from_byte(tissue_rgba[0]), kParticleRed, cover);
-    frame_rgba[1] = over(fmaxf(green, 0.0f), kParticleGreen, cover);
-    frame_rgba[2] = over(fmaxf(blue, 0.0f), kParticleBlue, cover);
+  if (thickness_mm > 0.0f) {
+    const auto through_film = [&](float below, float absorbs_per_mm) {
+      return byte_from_unit(below * transmitted(transmission, absorbs_per_mm * thickness_mm));
+    };
+    frame_rgba[0] = through_film(unit_from_byte(tissue_rgba[0]), kBloodAbsorbsRedPerMm);
+    frame_rgba[1] = through_film(fmaxf(green, 0.0f), kBloodAbsorbsGreenPerMm);
+    frame_rgba[2] = through_film(fmaxf(blue, 0.0f), kBloodAbsorbsBluePerMm);
   } else {
+    // No film: exactly the stained tissue (scenes without particles keep their bytes).
     frame_rgba[0] = tissue_rgba[0];
     frame_rgba[1] = byte_from_unit(green);
     frame_rgba[2] = byte_from_unit(blue);
@@ -41,11 +55,16 @@ BLEEDSIM_HD inline void blend_pixel(const std::uint8_t* tissue_rgba, float stain
   frame_rgba[3] = tissue_rgba[3];
 }
 
-// The stage's twins. stain and cover may be null: a scene without that effect shows none of it.
+// The table transmitted() reads: exp(−k / kTransmissionStepsPerUnit), in double, rounded once.
+void fill_transmission_table(float* table);
+
+// The stage's twins. stain, thickness and transmission may be null: a scene without that effect
+// shows none of it.
 struct BlendArgs {
   const std::uint8_t* tissue_rgba;
   const float* stain;
-  const float* cover;
+  const float* thickness_mm;
+  const float* transmission;  // kTransmissionEntries, with thickness_mm
   int width;
   int height;
   std::uint8_t* frame_rgba;

@@ -15,7 +15,8 @@ class BlendStage final : public Stage {
 
  private:
   Field& frame_;
-  Buffer tissue_;  // the scene's tissue, uploaded once
+  Buffer tissue_;        // the scene's tissue, uploaded once
+  Buffer transmission_;  // the Beer–Lambert table, for scenes with a film of blood (particles)
 };
 
 }  // namespace bleedsim

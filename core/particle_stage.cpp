@@ -52,10 +52,6 @@ ParticleStage::ParticleStage(const Scene& scene, State& state, Backend& backend)
   Field& age = add_field(state, backend, element_field("particles/age", ElementType::u32, 1, capacity, true, "steps",
                                                        "steps each slot's particle has lived; a slot holds "
                                                        "a live particle while its age is below the lifetime"));
-  Field& cover = add_field(state, backend,
-                           image_field(scene, "particles/cover", ElementType::f32, 1, "1",
-                                       "opacity of the blood particles drawn over each pixel (the largest "
-                                       "over the particles covering it, faded near the end of their lifetime)"));
   counts_ = &add_field(state, backend,
                        element_field("particles/accounting", ElementType::u64, 1, 4, false, "particles",
                                       "emitted, alive, expired, overwritten: emitted = alive + expired + "
@@ -63,8 +59,6 @@ ParticleStage::ParticleStage(const Scene& scene, State& state, Backend& backend)
   a.position = position.data.as<float>();
   a.velocity = velocity.data.as<float>();
   a.age = age.data.as<std::uint32_t>();
-  args_.cover = cover.data.as<float>();
-  args_.grid = scene.domain.grid();
   args_.model = model;
 
   const std::size_t sort_bytes = backend.particle_sort_scratch_bytes(capacity, model.key_bits);
@@ -81,7 +75,7 @@ std::size_t ParticleStage::bytes_for(const Scene& scene) {
   const std::size_t n = std::size_t(scene.particles->capacity);
   const ParticleModel model = make_particle_model(scene);
   const std::size_t fields = n * (2 * sizeof(float) + 2 * sizeof(float) + sizeof(std::uint32_t)) +
-                             std::size_t(scene.domain.pixel_count()) * sizeof(float) + sizeof(ParticleCounts);
+                             sizeof(ParticleCounts);
   return fields + particle_scratch_bytes(model, scene.particles->capacity, sort_scratch_bound(n)) +
          std::max(kInitialEmitters, scene.cuts.size()) * sizeof(Emitter);
 }
@@ -143,8 +137,6 @@ void ParticleStage::run(const Scene& scene, State& state, Backend& backend) {
     backend.particles(ParticlePhase::integrate, args_);
     accounting_.end_step(step);
   }
-  track_live_particles();  // the draw sees those that lived through the last step
-  backend.particles(ParticlePhase::draw, args_);
   const ParticleCounts counts = accounting_.counts();
   backend.upload(counts_->data.data(), &counts, sizeof counts);
 }

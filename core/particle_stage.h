@@ -8,9 +8,9 @@
 
 namespace bleedsim {
 
-// Each frame: `substeps` physics steps (emit, bin, collide, integrate), then the particles drawn
-// into the cover field and the accounting recorded. The ring buffer's state is in fields, so it is
-// hashed, compared and written like any other output.
+// Each frame: `substeps` physics steps (emit, bin, collide, integrate), then the accounting
+// recorded. The ring buffer's state is in fields, so it is hashed, compared and written like any
+// other output.
 class ParticleStage final : public Stage {
  public:
   ParticleStage(const Scene& scene, State& state, Backend& backend);

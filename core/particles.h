@@ -7,8 +7,7 @@
 //   bin        each live particle's grid cell; a stable sort of (cell, slot); each cell's range
 //   collide    contact acceleration from the neighbours in the 3 × 3 cells around, in fixed order
 //   integrate  gravity, contacts and drag (semi-implicit Euler), panel bounds, age
-// and once per frame, draw: each particle's disc into the cover field (until the screen-space
-// stages give blood its real look).
+// Once per frame the splat stage (core/splat.h) turns the live particles into a film of blood.
 //
 // Every update reads the old state and writes a new one (collide reads sorted copies, integrate
 // touches only its own slot), sums run in a fixed order, and there are no float atomics: the CPU
@@ -86,7 +85,7 @@ struct Emitter {
   std::uint32_t count;
 };
 
-enum class ParticlePhase { emit, bin, collide, integrate, draw };
+enum class ParticlePhase { emit, bin, collide, integrate };
 
 struct ParticleArgs {
   ParticleModel model;
@@ -99,8 +98,6 @@ struct ParticleArgs {
   // on, wrapping: every other slot is empty. Loops over particles need visit only these.
   std::uint32_t first_live_slot;
   int live_count;
-  PixelGrid grid;           // draw
-  float* cover;             // draw: grid.width × grid.height
 };
 
 BLEEDSIM_HD inline bool is_alive(const ParticleModel& m, std::uint32_t age) {
@@ -280,37 +277,12 @@ BLEEDSIM_HD inline void integrate_particle(const ParticleArrays& p, const Partic
   p.age[slot] = age + 1;
 }
 
-// ---- draw --------------------------------------------------------------------------------------
+// ---- fade --------------------------------------------------------------------------------------
 
-// Opacity over a particle's last fade_steps: from 1 down to 1/fade_steps, never 0 while it lives,
-// so it fades out instead of popping.
+// How much of a particle is still there over its last fade_steps: from 1 down to 1/fade_steps,
+// never 0 while it lives, so it fades out instead of popping.
 BLEEDSIM_HD inline float fade_alpha(const ParticleModel& m, std::uint32_t age) {
   return fminf(1.0f, float(m.lifetime_steps - age) / float(m.fade_steps));
-}
-
-// Calls deposit(pixel, alpha) for each pixel whose centre lies in the particle's disc. Coverage is
-// the largest alpha over the particles covering a pixel: a maximum, so the order of deposits (and
-// of the GPU's integer atomics) cannot change it.
-template <class Deposit>
-BLEEDSIM_HD inline void draw_particle(const ParticleArrays& p, const ParticleModel& m, const PixelGrid& g,
-                                      int slot, Deposit deposit) {
-  const std::uint32_t age = p.age[slot];
-  if (!is_alive(m, age)) return;
-  const float x = p.position[2 * slot], y = p.position[2 * slot + 1];
-  const float w = float(g.width), h = float(g.height);
-  const int i0 = int(clamp_float(ceilf((x - m.radius_mm) / g.mm_per_px_x - 0.5f), 0.0f, w));
-  const int i1 = int(clamp_float(floorf((x + m.radius_mm) / g.mm_per_px_x - 0.5f), -1.0f, w - 1.0f));
-  const int j0 = int(clamp_float(ceilf((y - m.radius_mm) / g.mm_per_px_y - 0.5f), 0.0f, h));
-  const int j1 = int(clamp_float(floorf((y + m.radius_mm) / g.mm_per_px_y - 0.5f), -1.0f, h - 1.0f));
-  const float alpha = fade_alpha(m, age);
-  const float r2 = m.radius_mm * m.radius_mm;
-  for (int j = j0; j <= j1; ++j) {
-    const float dy = pixel_centre_y_mm(g, j) - y;
-    for (int i = i0; i <= i1; ++i) {
-      const float dx = pixel_centre_x_mm(g, i) - x;
-      if (dx * dx + dy * dy <= r2) deposit(std::size_t(j) * std::size_t(g.width) + std::size_t(i), alpha);
-    }
-  }
 }
 
 // The twins: one phase of a step over host memory (CPU reference) or device memory (CUDA).

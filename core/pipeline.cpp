@@ -2,6 +2,7 @@
 
 #include "core/blend_stage.h"
 #include "core/particle_stage.h"
+#include "core/splat_stage.h"
 #include "core/spread_stage.h"
 
 namespace bleedsim {
@@ -25,6 +26,7 @@ const StageKind kStages[] = {
      make_stage<SpreadStage>},
     {"particles", [](const Scene& s) { return s.particles.has_value(); }, ParticleStage::bytes_for,
      make_stage<ParticleStage>},
+    {"splat", [](const Scene& s) { return s.particles.has_value(); }, SplatStage::bytes_for, make_stage<SplatStage>},
     {"blend", [](const Scene&) { return true; }, BlendStage::bytes_for, make_stage<BlendStage>},
 };
 

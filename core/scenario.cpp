@@ -33,7 +33,7 @@ struct KnownField {
   const char* name;
   const char* effect;  // the table that must be present for the field to exist
 };
-const KnownField kFields[] = {{"spread/stain", "spread"},          {"particles/cover", "particles"},
+const KnownField kFields[] = {{"spread/stain", "spread"},          {"splat/thickness", "particles"},
                               {"particles/accounting", "particles"}, {"particles/position", "particles"},
                               {"particles/velocity", "particles"},   {"particles/age", "particles"}};
 
@@ -297,7 +297,7 @@ void read_particles_table(Reader& r, const toml::table& root, Scene& scene) {
                {"capacity", "diameter_mm", "cell_mm", "max_per_cell", "rate_per_s", "volume_mm3_per_s",
                 "particle_volume_mm3", "bleed_s", "lifetime_s", "fade_s", "gravity_mm_s2", "drag_per_s",
                 "stiffness_per_s2", "damping_per_s", "max_speed_mm_s", "substeps", "jitter_mm", "velocity_mm_s",
-                "velocity_jitter_mm_s"});
+                "velocity_jitter_mm_s", "splat_radius_mm"});
   ParticleParams p;
   p.capacity = int(r.integer(*t, k, "capacity", 1, 1 << 28).value_or(p.capacity));
   p.diameter_mm = r.number(*t, k, "diameter_mm", {0.0, 100.0, true}).value_or(p.diameter_mm);
@@ -309,11 +309,11 @@ void read_particles_table(Reader& r, const toml::table& root, Scene& scene) {
   if (rate && volume)
     throw InputError(scene.place_of(k + ".volume_mm3_per_s"), k + ".volume_mm3_per_s",
                      "give either rate_per_s or volume_mm3_per_s, not both");
-  if (volume.has_value() != each.has_value()) {
-    const std::string missing = volume ? "particle_volume_mm3" : "volume_mm3_per_s";
-    const std::string given = volume ? "volume_mm3_per_s" : "particle_volume_mm3";
-    throw InputError(scene.place_of(k + "." + given), k + "." + given, "needs " + missing + " beside it");
-  }
+  // A particle's volume is the blood its splat spreads; with a volume rate it also sets the count.
+  if (volume && !each)
+    throw InputError(scene.place_of(k + ".volume_mm3_per_s"), k + ".volume_mm3_per_s",
+                     "needs particle_volume_mm3 beside it");
+  p.particle_volume_mm3 = each.value_or(p.particle_volume_mm3);
   if (volume) {
     p.rate_per_s = *volume / *each;
     if (!kParticleRate.contains(p.rate_per_s))
@@ -337,6 +337,7 @@ void read_particles_table(Reader& r, const toml::table& root, Scene& scene) {
   if (const auto v = read_vector(r, *t, k, "velocity_mm_s", {-1.0e5, 1.0e5}))
     std::tie(p.velocity_x_mm_s, p.velocity_y_mm_s) = *v;
   p.velocity_jitter_mm_s = r.number(*t, k, "velocity_jitter_mm_s", {0.0, 1.0e5}).value_or(p.velocity_jitter_mm_s);
+  p.splat_radius_mm = r.number(*t, k, "splat_radius_mm", {0.0, 100.0, true}).value_or(0.0);
   scene.particles = p;
   const SettingsProblem problem = particle_settings_problem(scene);
   // A key the file leaves at its default is placed at the [particles] header, as a missing

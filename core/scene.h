@@ -65,6 +65,8 @@ struct ParticleParams {
   double velocity_x_mm_s = 0.0;    // emission velocity
   double velocity_y_mm_s = 0.0;
   double velocity_jitter_mm_s = 5.0;
+  double particle_volume_mm3 = 0.004;  // the blood one particle stands for (the splat's film)
+  double splat_radius_mm = 0.0;        // the film's footprint; 0: the diameter
 };
 
 struct OutputSpec {

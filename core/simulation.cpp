@@ -39,7 +39,8 @@ void check_consistent(const Scene& scene) {
     const ParticleParams& p = *scene.particles;
     if (p.capacity < 1 || !(p.diameter_mm > 0) || p.max_per_cell < 1 || p.substeps < 1 ||
         !(p.lifetime_s > 0) || !(p.fade_s > 0) || !(p.stiffness_per_s2 > 0) || !(p.damping_per_s >= 0) ||
-        !(p.drag_per_s >= 0) || !(p.max_speed_mm_s > 0) || (p.cell_mm != 0 && !(p.cell_mm >= p.diameter_mm)))
+        !(p.drag_per_s >= 0) || !(p.max_speed_mm_s > 0) || !(p.particle_volume_mm3 > 0) ||
+        !(p.splat_radius_mm >= 0) || (p.cell_mm != 0 && !(p.cell_mm >= p.diameter_mm)))
       throw std::invalid_argument("scene particle parameters out of range (see docs/particles.md)");
     const SettingsProblem problem = particle_settings_problem(scene);
     if (!problem.key.empty()) throw std::invalid_argument(problem.key + ": " + problem.message);

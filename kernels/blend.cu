@@ -17,7 +17,8 @@ __global__ void blend_kernel(BlendArgs args) {
   const uchar4 tissue = reinterpret_cast<const uchar4*>(args.tissue_rgba)[p];
   const std::uint8_t in[4] = {tissue.x, tissue.y, tissue.z, tissue.w};
   std::uint8_t out[4];
-  blend_pixel(in, args.stain ? args.stain[p] : 0.0f, args.cover ? args.cover[p] : 0.0f, out);
+  blend_pixel(in, args.stain ? args.stain[p] : 0.0f, args.thickness_mm ? args.thickness_mm[p] : 0.0f,
+              args.transmission, out);
   reinterpret_cast<uchar4*>(args.frame_rgba)[p] = make_uchar4(out[0], out[1], out[2], out[3]);
 }
 

@@ -87,6 +87,7 @@ class CudaBackend final : public Backend {
   void run_spread(const SpreadArgs& args) override { spread_cuda(args); }
   void run_blend(const BlendArgs& args) override { blend_cuda(args); }
   void run_particles(ParticlePhase phase, const ParticleArgs& args) override { particles_cuda(phase, args); }
+  void run_splat(const SplatArgs& args) override { splat_cuda(args); }
 
  private:
   int device_ = 0;

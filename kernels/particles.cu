@@ -44,17 +44,6 @@ __global__ void integrate_kernel(ParticleArgs a) {
   if (t < a.live_count) integrate_particle(a.arrays, a.model, live_slot(a, t));
 }
 
-__global__ void draw_kernel(ParticleArgs a) {
-  const int t = blockIdx.x * blockDim.x + threadIdx.x;
-  if (t >= a.live_count) return;
-  const int slot = live_slot(a, t);
-  // Alphas are positive floats, whose bit patterns order as the values do: an integer maximum
-  // on the bits is the float maximum, and integer atomics give the same result in any order.
-  int* cover = reinterpret_cast<int*>(a.cover);
-  draw_particle(a.arrays, a.model, a.grid, slot,
-                [&](std::size_t pixel, float alpha) { atomicMax(cover + pixel, __float_as_int(alpha)); });
-}
-
 void sort_by_cell(const ParticleArrays& p, const ParticleModel& m) {
   std::size_t bytes = p.sort_scratch_bytes;
   BLEEDSIM_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(p.sort_scratch, bytes, p.cell_key, p.sorted_key,
@@ -107,12 +96,6 @@ void particles_cuda(ParticlePhase phase, const ParticleArgs& a) {
       if (n == 0) return;
       integrate_kernel<<<blocks_for(n), kThreads>>>(a);
       check_launch("integrate_kernel");
-      break;
-    case ParticlePhase::draw:
-      BLEEDSIM_CUDA_CHECK(cudaMemsetAsync(a.cover, 0, std::size_t(a.grid.width) * a.grid.height * sizeof(float)));
-      if (n == 0) return;
-      draw_kernel<<<blocks_for(n), kThreads>>>(a);
-      check_launch("draw_kernel");
       break;
   }
 }

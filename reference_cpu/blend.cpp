@@ -11,7 +11,7 @@ void blend_cpu(const BlendArgs& args, int threads) {
     for (int i = 0; i < args.width; ++i) {
       const std::size_t p = std::size_t(j) * args.width + i;
       blend_pixel(args.tissue_rgba + 4 * p, args.stain ? args.stain[p] : 0.0f,
-                  args.cover ? args.cover[p] : 0.0f, args.frame_rgba + 4 * p);
+                  args.thickness_mm ? args.thickness_mm[p] : 0.0f, args.transmission, args.frame_rgba + 4 * p);
     }
   });
 }

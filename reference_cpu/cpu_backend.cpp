@@ -54,6 +54,7 @@ class CpuBackend final : public Backend {
   void run_particles(ParticlePhase phase, const ParticleArgs& args) override {
     particles_cpu(phase, args, threads_);
   }
+  void run_splat(const SplatArgs& args) override { splat_cpu(args, threads_); }
 
  private:
   int threads_;

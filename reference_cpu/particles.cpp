@@ -49,13 +49,6 @@ void bin(const ParticleArgs& a) {
   for (int i = 0; i < a.live_count; ++i) gather_sorted(p, i);
 }
 
-void draw(const ParticleArgs& a) {
-  std::fill(a.cover, a.cover + std::size_t(a.grid.width) * std::size_t(a.grid.height), 0.0f);
-  for (int t = 0; t < a.live_count; ++t)
-    draw_particle(a.arrays, a.model, a.grid, live_slot(a, t),
-                  [&](std::size_t pixel, float alpha) { a.cover[pixel] = std::max(a.cover[pixel], alpha); });
-}
-
 }  // namespace
 
 void particles_cpu(ParticlePhase phase, const ParticleArgs& a, int threads) {
@@ -72,9 +65,6 @@ void particles_cpu(ParticlePhase phase, const ParticleArgs& a, int threads) {
       break;
     case ParticlePhase::integrate:
       parallel_rows(n, threads_for(n, threads), [&](int t) { integrate_particle(a.arrays, a.model, live_slot(a, t)); });
-      break;
-    case ParticlePhase::draw:
-      draw(a);
       break;
   }
 }

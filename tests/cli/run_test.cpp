@@ -109,7 +109,7 @@ TEST(Validate, DescribesTheRunWithoutWritingAnything) {
   const CliResult result = run_cli("validate '" + scenario("default.toml") + "'");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   EXPECT_NE(result.output.find("valid"), std::string::npos);
-  EXPECT_NE(result.output.find("spread, particles, blend"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("spread, particles, splat, blend"), std::string::npos) << result.output;
   const CliResult tissue = run_cli("validate '" + scenario("tissue-only.toml") + "'");
   EXPECT_NE(tissue.output.find("stages     blend\n"), std::string::npos) << tissue.output;
 }

@@ -23,16 +23,16 @@ TEST(ByteConversion, ClampsOutOfRangeAndNotANumber) {
 TEST(BlendPixel, WithoutStainShowsTheTissue) {
   const std::uint8_t tissue[4] = {204, 115, 110, 255};
   std::uint8_t frame[4];
-  blend_pixel(tissue, 0.0f, 0.0f, frame);
+  blend_pixel(tissue, 0.0f, 0.0f, nullptr, frame);
   EXPECT_EQ(std::vector<int>(frame, frame + 4), std::vector<int>({204, 115, 110, 255}));
 }
 
 TEST(BlendPixel, TakesTheStainOutOfGreenAndBlueSoItReadsRed) {
   const std::uint8_t tissue[4] = {204, 153, 102, 255};  // green 0.6, blue 0.4
   std::uint8_t frame[4];
-  blend_pixel(tissue, 0.2f, 0.0f, frame);
+  blend_pixel(tissue, 0.2f, 0.0f, nullptr, frame);
   EXPECT_EQ(std::vector<int>(frame, frame + 4), std::vector<int>({204, 102, 51, 255}));
-  blend_pixel(tissue, 1.0f, 0.0f, frame);
+  blend_pixel(tissue, 1.0f, 0.0f, nullptr, frame);
   EXPECT_EQ(std::vector<int>(frame, frame + 4), std::vector<int>({204, 0, 0, 255}));
 }
 

@@ -443,7 +443,7 @@ TEST(ScenarioBadInput, CutWrittenAsASingleTable) {
 TEST(ScenarioBadInput, OutputFieldWithAnUnknownName) {
   EXPECT_TRUE(refused_at(kBase + "fields = [\n  \"spread/stain\",\n  \"spread/blood\",\n]\n", kEnd + 2,
                          "output.fields[1]",
-                         "unknown field 'spread/blood' (known: spread/stain, particles/cover, particles/accounting, "
+                         "unknown field 'spread/blood' (known: spread/stain, splat/thickness, particles/accounting, "
                          "particles/position, particles/velocity, particles/age)"));
 }
 
@@ -540,20 +540,22 @@ const std::string kFullParticles =
     "jitter_mm = 0.02\n"                                       // 25
     "velocity_mm_s = [3, -4.5]\n"                              // 26
     "velocity_jitter_mm_s = 1.25\n"                            // 27
-    "\n"                                                       // 28
-    "[[cut]]\n"                                                // 29  its flow from [particles]
-    "x_mm = 8.0\n"                                             // 30
-    "y_mm = 2.0\n"                                             // 31
-    "\n"                                                       // 32
-    "[[cut]]\n"                                                // 33  its own
-    "x_mm = 4.0\n"                                             // 34
-    "y_mm = 3.0\n"                                             // 35
-    "start_s = 0.5\n"                                          // 36
-    "rate_per_s = 1200\n"                                      // 37
-    "bleed_s = 0.25\n"                                         // 38
-    "\n"                                                       // 39
-    "[output]\n"                                               // 40
-    "fields = [\"particles/cover\", \"particles/position\"]\n";  // 41
+    "particle_volume_mm3 = 0.008\n"                            // 28  alone: the splat's volume, not the rate
+    "splat_radius_mm = 0.4\n"                                  // 29
+    "\n"                                                       // 30
+    "[[cut]]\n"                                                // 31  its flow from [particles]
+    "x_mm = 8.0\n"                                             // 32
+    "y_mm = 2.0\n"                                             // 33
+    "\n"                                                       // 34
+    "[[cut]]\n"                                                // 35  its own
+    "x_mm = 4.0\n"                                             // 36
+    "y_mm = 3.0\n"                                             // 37
+    "start_s = 0.5\n"                                          // 38
+    "rate_per_s = 1200\n"                                      // 39
+    "bleed_s = 0.25\n"                                         // 40
+    "\n"                                                       // 41
+    "[output]\n"                                               // 42
+    "fields = [\"splat/thickness\", \"particles/position\"]\n";  // 43
 
 TEST(ScenarioParticles, ReadsEveryParticleKey) {
   const Scene scene = parse_scenario(kFullParticles, kPath);
@@ -563,7 +565,7 @@ TEST(ScenarioParticles, ReadsEveryParticleKey) {
   EXPECT_EQ(p.diameter_mm, 0.25);
   EXPECT_EQ(p.cell_mm, 0.5);
   EXPECT_EQ(p.max_per_cell, 6);
-  EXPECT_EQ(p.rate_per_s, 800.0);
+  EXPECT_EQ(p.rate_per_s, 800.0);  // particle_volume_mm3 (line 28) without volume_mm3_per_s leaves it alone
   EXPECT_EQ(p.bleed_s, 1.5);
   EXPECT_EQ(p.lifetime_s, 10.0);
   EXPECT_EQ(p.fade_s, 2.5);
@@ -578,6 +580,8 @@ TEST(ScenarioParticles, ReadsEveryParticleKey) {
   EXPECT_EQ(p.velocity_x_mm_s, 3.0);
   EXPECT_EQ(p.velocity_y_mm_s, -4.5);
   EXPECT_EQ(p.velocity_jitter_mm_s, 1.25);
+  EXPECT_EQ(p.particle_volume_mm3, 0.008);
+  EXPECT_EQ(p.splat_radius_mm, 0.4);
   EXPECT_FALSE(scene.spread.has_value());  // [particles] declares the particle flow alone
 
   ASSERT_EQ(scene.cuts.size(), 2u);
@@ -587,14 +591,16 @@ TEST(ScenarioParticles, ReadsEveryParticleKey) {
   EXPECT_EQ(scene.cuts[1].rate_per_s, 1200.0);
   EXPECT_EQ(scene.cuts[1].bleed_s, 0.25);
 
-  EXPECT_EQ(scene.output.fields, (std::vector<std::string>{"particles/cover", "particles/position"}));
+  EXPECT_EQ(scene.output.fields, (std::vector<std::string>{"splat/thickness", "particles/position"}));
 
   EXPECT_EQ(scene.place_of("particles").line, 10);
   EXPECT_EQ(scene.place_of("particles.capacity").line, 11);
   EXPECT_EQ(scene.place_of("particles.gravity_mm_s2").line, 19);
   EXPECT_EQ(scene.place_of("particles.max_speed_mm_s").line, 23);
   EXPECT_EQ(scene.place_of("particles.substeps").line, 24);
-  EXPECT_EQ(scene.place_of("cut[1].rate_per_s").line, 37);
+  EXPECT_EQ(scene.place_of("particles.particle_volume_mm3").line, 28);
+  EXPECT_EQ(scene.place_of("particles.splat_radius_mm").line, 29);
+  EXPECT_EQ(scene.place_of("cut[1].rate_per_s").line, 39);
 }
 
 TEST(ScenarioParticles, AnEmptyTableTakesTheDocumentedDefaults) {
@@ -621,6 +627,8 @@ TEST(ScenarioParticles, AnEmptyTableTakesTheDocumentedDefaults) {
   EXPECT_EQ(p.velocity_x_mm_s, 0.0);
   EXPECT_EQ(p.velocity_y_mm_s, 0.0);
   EXPECT_EQ(p.velocity_jitter_mm_s, 5.0);
+  EXPECT_EQ(p.particle_volume_mm3, 0.004);
+  EXPECT_EQ(p.splat_radius_mm, 0.0);  // 0: the diameter
   // A cut that gives no flow of its own takes [particles]' defaults.
   ASSERT_EQ(scene.cuts.size(), 1u);
   EXPECT_EQ(scene.cuts[0].rate_per_s, 500.0);
@@ -654,6 +662,8 @@ TEST(ScenarioParticles, EachKeyOutOfRangeIsRefusedAtItsLine) {
       {"volume_mm3_per_s = -1", "particles.volume_mm3_per_s", "must be between 0 and 1e+06 (got -1)"},
       {"particle_volume_mm3 = 0", "particles.particle_volume_mm3",
        "must be greater than 0 and at most 1e+06 (got 0)"},
+      {"particle_volume_mm3 = 2e6", "particles.particle_volume_mm3",
+       "must be greater than 0 and at most 1e+06 (got 2e+06)"},
       {"bleed_s = -1", "particles.bleed_s", "must be between 0 and 86400 (got -1)"},
       {"lifetime_s = 0", "particles.lifetime_s", "must be greater than 0 and at most 86400 (got 0)"},
       {"lifetime_s = nan", "particles.lifetime_s", "must be a finite number (got nan)"},
@@ -669,6 +679,8 @@ TEST(ScenarioParticles, EachKeyOutOfRangeIsRefusedAtItsLine) {
       {"substeps = 33.0", "particles.substeps", "expected an integer, got a floating-point number"},
       {"jitter_mm = -0.1", "particles.jitter_mm", "must be between 0 and 100 (got -0.1)"},
       {"velocity_jitter_mm_s = -1", "particles.velocity_jitter_mm_s", "must be between 0 and 100000 (got -1)"},
+      {"splat_radius_mm = 0", "particles.splat_radius_mm", "must be greater than 0 and at most 100 (got 0)"},
+      {"splat_radius_mm = 100.5", "particles.splat_radius_mm", "must be greater than 0 and at most 100 (got 100.5)"},
   };
   for (const Case& c : cases)
     EXPECT_TRUE(refused_at(particles_with(std::string(c.line) + "\n"), kParticlesEnd, c.key, c.gist)) << c.line;
@@ -724,10 +736,14 @@ TEST(ScenarioParticles, RateAndVolumeTogetherAreRefused) {
 }
 
 TEST(ScenarioParticles, VolumeAndParticleVolumeNeedEachOther) {
+  // A volume rate cannot be turned into a count of particles without the volume of one.
   EXPECT_TRUE(refused_at(particles_with("volume_mm3_per_s = 2.0\n"), kParticlesEnd, "particles.volume_mm3_per_s",
                          "needs particle_volume_mm3 beside it"));
-  EXPECT_TRUE(refused_at(particles_with("particle_volume_mm3 = 0.004\n"), kParticlesEnd,
-                         "particles.particle_volume_mm3", "needs volume_mm3_per_s beside it"));
+  // A particle volume alone is the blood each particle's splat spreads; the rate keeps its default.
+  const Scene scene = parse_scenario(particles_with("particle_volume_mm3 = 0.01\n"), kPath);
+  EXPECT_EQ(scene.particles->particle_volume_mm3, 0.01);
+  EXPECT_EQ(scene.particles->rate_per_s, 500.0);
+  EXPECT_EQ(scene.place_of("particles.particle_volume_mm3").line, kParticlesEnd);
 }
 
 TEST(ScenarioParticles, VolumeOverParticleVolumeGivesTheRate) {
@@ -851,11 +867,14 @@ TEST(ScenarioParticles, OutputFieldsNameParticleFieldsOnlyWithParticles) {
   EXPECT_TRUE(refused_at(kBase + "fields = [\"particles/position\"]\n", kEnd, "output.fields[0]",
                          "'particles/position' needs the [particles] effect, which this scene does not declare"));
   const std::string all =
-      "[output]\nfields = [\"particles/cover\", \"particles/accounting\", \"particles/position\", "
+      "[output]\nfields = [\"splat/thickness\", \"particles/accounting\", \"particles/position\", "
       "\"particles/velocity\", \"particles/age\"]\n";
   EXPECT_EQ(parse_scenario(particles_with(all), kPath).output.fields,
-            (std::vector<std::string>{"particles/cover", "particles/accounting", "particles/position",
+            (std::vector<std::string>{"splat/thickness", "particles/accounting", "particles/position",
                                       "particles/velocity", "particles/age"}));
+  // The splat's film exists only with particles too.
+  EXPECT_TRUE(refused_at(kBase + "fields = [\"splat/thickness\"]\n", kEnd, "output.fields[0]",
+                         "'splat/thickness' needs the [particles] effect, which this scene does not declare"));
 }
 
 // ---- load_scenario: the file itself -----------------------------------------------------------
