@@ -39,6 +39,11 @@ void Backend::splat(const SplatArgs& args) {
   run_splat(args);
 }
 
+void Backend::blur(BlurPhase phase, const BlurArgs& args) {
+  ++launches_["blur"];
+  run_blur(phase, args);
+}
+
 std::uint64_t Backend::launches(const std::string& stage) const {
   const auto it = launches_.find(stage);
   return it == launches_.end() ? 0 : it->second;

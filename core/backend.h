@@ -9,6 +9,7 @@
 #include <string>
 
 #include "core/blend.h"
+#include "core/blur.h"
 #include "core/buffer.h"
 #include "core/particles.h"
 #include "core/splat.h"
@@ -41,6 +42,7 @@ class Backend {
   void blend(const BlendArgs& args);
   void particles(ParticlePhase phase, const ParticleArgs& args);  // counted as "particles"
   void splat(const SplatArgs& args);
+  void blur(BlurPhase phase, const BlurArgs& args);  // counted as "blur"
   // Temporary storage the particle sort needs here (none on the CPU, CUB's on the GPU).
   virtual std::size_t particle_sort_scratch_bytes(int capacity, int key_bits) const = 0;
 
@@ -54,6 +56,7 @@ class Backend {
   virtual void run_blend(const BlendArgs& args) = 0;
   virtual void run_particles(ParticlePhase phase, const ParticleArgs& args) = 0;
   virtual void run_splat(const SplatArgs& args) = 0;
+  virtual void run_blur(BlurPhase phase, const BlurArgs& args) = 0;
 
  private:
   std::map<std::string, std::uint64_t> launches_;

@@ -36,7 +36,9 @@ std::size_t BlendStage::bytes_for(const Scene& scene) { return 2 * rgba_bytes(sc
 
 void BlendStage::run(const Scene& scene, State& state, Backend& backend) {
   const Field* stain = state.find("spread/stain");
-  const Field* thickness = state.find("splat/thickness");
+  // The blurred film when the scene blurs it, the raw splat otherwise.
+  const Field* thickness = state.find("blur/thickness");
+  if (!thickness) thickness = state.find("splat/thickness");
   backend.blend(BlendArgs{tissue_.as<const std::uint8_t>(),
                           stain ? stain->data.as<const float>() : nullptr,
                           thickness ? thickness->data.as<const float>() : nullptr,

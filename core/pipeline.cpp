@@ -1,6 +1,7 @@
 #include "core/pipeline.h"
 
 #include "core/blend_stage.h"
+#include "core/blur_stage.h"
 #include "core/particle_stage.h"
 #include "core/splat_stage.h"
 #include "core/spread_stage.h"
@@ -27,6 +28,7 @@ const StageKind kStages[] = {
     {"particles", [](const Scene& s) { return s.particles.has_value(); }, ParticleStage::bytes_for,
      make_stage<ParticleStage>},
     {"splat", [](const Scene& s) { return s.particles.has_value(); }, SplatStage::bytes_for, make_stage<SplatStage>},
+    {"blur", [](const Scene& s) { return s.particles && s.blur; }, BlurStage::bytes_for, make_stage<BlurStage>},
     {"blend", [](const Scene&) { return true; }, BlendStage::bytes_for, make_stage<BlendStage>},
 };
 

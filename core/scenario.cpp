@@ -34,6 +34,7 @@ struct KnownField {
   const char* effect;  // the table that must be present for the field to exist
 };
 const KnownField kFields[] = {{"spread/stain", "spread"},          {"splat/thickness", "particles"},
+                              {"blur/thickness", "blur"},
                               {"particles/accounting", "particles"}, {"particles/position", "particles"},
                               {"particles/velocity", "particles"},   {"particles/age", "particles"}};
 
@@ -347,6 +348,20 @@ void read_particles_table(Reader& r, const toml::table& root, Scene& scene) {
                      problem.message);
 }
 
+void read_blur_table(Reader& r, const toml::table& root, Scene& scene) {
+  const toml::table* t = r.table(root, "blur", "blur");
+  if (!t) return;
+  r.only_known(*t, "blur", {"downsample", "radius_px", "sigma_px"});
+  if (!scene.particles)
+    throw InputError(scene.place_of("blur"), "blur", "blurs the particles' film: this scene declares no [particles]");
+  BlurParams b;
+  b.downsample = int(r.integer(*t, "blur", "downsample", 1, 4).value_or(b.downsample));
+  if (b.downsample == 3) throw InputError(scene.place_of("blur.downsample"), "blur.downsample", "must be 1, 2 or 4 (got 3)");
+  b.radius_px = int(r.integer(*t, "blur", "radius_px", 0, 64).value_or(b.radius_px));
+  b.sigma_px = r.number(*t, "blur", "sigma_px", {0.0, 64.0, true}).value_or(std::max(0.5, b.radius_px / 2.0));
+  scene.blur = b;
+}
+
 void read_cuts(Reader& r, const toml::table& root, Scene& scene) {
   const toml::node* node = root.get("cut");
   if (!node) return;
@@ -448,10 +463,11 @@ Scene parse_scenario(const std::string& text, const std::string& path) {
   scene.source_path = path;
   scene.source_text = text;
   Reader reader(scene, path);
-  reader.only_known(root, "", {"scene", "tissue", "spread", "particles", "cut", "output"});
+  reader.only_known(root, "", {"scene", "tissue", "spread", "particles", "blur", "cut", "output"});
   read_scene_table(reader, root, scene);
   read_spread_table(reader, root, scene);
   read_particles_table(reader, root, scene);
+  read_blur_table(reader, root, scene);
   read_cuts(reader, root, scene);
   read_output_table(reader, root, scene);
   read_tissue(reader, root, scene);

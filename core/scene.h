@@ -69,6 +69,14 @@ struct ParticleParams {
   double splat_radius_mm = 0.0;        // the film's footprint; 0: the diameter
 };
 
+// Parameters of the blur of the particles' film (docs/particles.md); present only when the scene
+// calls for it (it needs [particles]).
+struct BlurParams {
+  int downsample = 2;      // 1, 2 or 4
+  int radius_px = 4;       // taps either side, in downsampled pixels
+  double sigma_px = 2.0;   // the Gaussian's, in downsampled pixels
+};
+
 struct OutputSpec {
   std::string dir;                  // where outputs go; relative paths are to the working directory
   bool hdf5 = true;                 // frames.h5 in dir
@@ -89,6 +97,7 @@ struct Scene {
   std::string tissue_source;           // file path, or "procedural"
   std::optional<SpreadParams> spread;  // the effects the scene calls for
   std::optional<ParticleParams> particles;
+  std::optional<BlurParams> blur;
   std::vector<Cut> cuts;               // cuts the scenario makes, in the order written (the
                                        // order overlapping stains combine in)
   OutputSpec output;

@@ -45,6 +45,13 @@ void check_consistent(const Scene& scene) {
     const SettingsProblem problem = particle_settings_problem(scene);
     if (!problem.key.empty()) throw std::invalid_argument(problem.key + ": " + problem.message);
   }
+  if (scene.blur) {
+    const BlurParams& b = *scene.blur;
+    if (!scene.particles) throw std::invalid_argument("a scene's blur needs particles to blur");
+    if ((b.downsample != 1 && b.downsample != 2 && b.downsample != 4) || b.radius_px < 0 || b.radius_px > 64 ||
+        !(b.sigma_px > 0) || !(b.sigma_px <= 64))
+      throw std::invalid_argument("scene blur parameters out of range (downsample 1, 2 or 4; radius 0-64; sigma (0, 64])");
+  }
 }
 
 // The fields must fit where the backend computes, and a host copy of them must fit for reading

@@ -88,6 +88,7 @@ class CudaBackend final : public Backend {
   void run_blend(const BlendArgs& args) override { blend_cuda(args); }
   void run_particles(ParticlePhase phase, const ParticleArgs& args) override { particles_cuda(phase, args); }
   void run_splat(const SplatArgs& args) override { splat_cuda(args); }
+  void run_blur(BlurPhase phase, const BlurArgs& args) override { blur_cuda(phase, args); }
 
  private:
   int device_ = 0;

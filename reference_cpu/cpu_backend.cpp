@@ -55,6 +55,7 @@ class CpuBackend final : public Backend {
     particles_cpu(phase, args, threads_);
   }
   void run_splat(const SplatArgs& args) override { splat_cpu(args, threads_); }
+  void run_blur(BlurPhase phase, const BlurArgs& args) override { blur_cpu(phase, args, threads_); }
 
  private:
   int threads_;
