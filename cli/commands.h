@@ -17,6 +17,7 @@ struct RunOptions {
   BackendChoice backend;
   std::optional<std::string> out_dir;  // overrides [output].dir
   std::optional<int> png_every;        // overrides [output].png_every
+  std::optional<int> contact_sheet;    // overrides [output].contact_sheet
   bool hdf5 = true;
   bool quiet = false;
 };

@@ -55,6 +55,9 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--png-every", run.png_every,
                       "write a PNG of frame 0, every Nth frame and the last (0: none)")
       ->check(CLI::Range(0, 1000000));
+  run_cmd->add_option("--contact-sheet", run.contact_sheet,
+                      "write contact_sheet.png: N frames from the first to the last in a grid (0: none)")
+      ->check(CLI::Range(0, 64));
   run_cmd->add_flag("--no-hdf5", no_hdf5, "do not write frames.h5");
   run_cmd->add_flag("-q,--quiet", run.quiet, "print nothing but errors");
 

@@ -16,6 +16,7 @@
 #include "cli/output_folder.h"
 #include "cli/progress.h"
 #include "core/build_info.h"
+#include "core/contact_sheet.h"
 #include "core/hdf5_writer.h"
 #include "core/png_writer.h"
 #include "core/scenario.h"
@@ -100,6 +101,7 @@ double seconds_since(Clock::time_point start) {
 int run_command(const RunOptions& options) {
   Scene scene = load_scenario(options.scenario);
   if (options.png_every) scene.output.png_every = *options.png_every;
+  if (options.contact_sheet) scene.output.contact_sheet = *options.contact_sheet;
   const bool dir_from_cli = options.out_dir.has_value();
   if (dir_from_cli) scene.output.dir = *options.out_dir;
   const SourcePlace dir_place = dir_from_cli ? SourcePlace{} : scene.place_of("output.dir");
@@ -128,6 +130,9 @@ int run_command(const RunOptions& options) {
     png_folder = folder.subfolder("png");
     remove_old_pngs(png_folder);
   }
+  std::unique_ptr<ContactSheet> sheet;
+  if (s.output.contact_sheet > 0)
+    sheet = std::make_unique<ContactSheet>(frames, s.output.contact_sheet, s.domain.width_px, s.domain.height_px);
   folder.keep();
 
   if (!options.quiet)
@@ -159,15 +164,20 @@ int run_command(const RunOptions& options) {
                      host[0].data());
       ++pngs;
     }
+    if (sheet && sheet->wants(k)) sheet->add(k, host[0].data());
     progress.update(k + 1);
   }
   progress.clear();
   const long done = sim.frames_done();
   if (writer) writer->finish(done == frames);
+  // An interrupted run's sheet shows the frames it reached; the cells after stay dark.
+  const fs::path sheet_path = folder.path() / "contact_sheet.png";
+  if (sheet) sheet->write(sheet_path.string());
   const double wall_s = seconds_since(start);
 
   std::string wrote = writer ? h5_path.string() : std::string("no HDF5");
   if (pngs > 0) wrote += " and " + std::to_string(pngs) + " PNGs in " + png_folder.string();
+  if (sheet) wrote += " and " + sheet_path.string();
   if (interrupted) {
     std::fprintf(stderr, "bleedsim: interrupted after %ld of %ld frames; kept %s\n", done, frames,
                  wrote.c_str());

@@ -398,11 +398,12 @@ void read_output_table(Reader& r, const toml::table& root, Scene& scene) {
   out.dir = "out/" + scene.name;
   const toml::table* t = r.table(root, "output", "output");
   if (!t) return;
-  r.only_known(*t, "output", {"dir", "hdf5", "png_every", "deflate", "fields"});
+  r.only_known(*t, "output", {"dir", "hdf5", "png_every", "contact_sheet", "deflate", "fields"});
   out.dir = r.string(*t, "output", "dir").value_or(out.dir);
   if (out.dir.empty()) throw InputError(scene.place_of("output.dir"), "output.dir", "must not be empty");
   out.hdf5 = r.boolean(*t, "output", "hdf5").value_or(out.hdf5);
   out.png_every = int(r.integer(*t, "output", "png_every", 0, 1000000).value_or(out.png_every));
+  out.contact_sheet = int(r.integer(*t, "output", "contact_sheet", 0, 64).value_or(out.contact_sheet));
   out.deflate_level = int(r.integer(*t, "output", "deflate", 0, 9).value_or(out.deflate_level));
   const toml::node* fields = t->get("fields");
   if (!fields) return;

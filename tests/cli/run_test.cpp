@@ -2,7 +2,9 @@
 #include <hdf5.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
+#include <utility>
 
 #include "core/backend.h"
 #include "tests/cli/cli_harness.h"
@@ -48,6 +50,25 @@ TEST(Run, WritesHdf5AndPngsAndSaysWhere) {
                                     (out / "frames.h5").string() +
                                     "' --frames 45 --width 160 --height 120 --fields spread/stain");
   EXPECT_EQ(check.exit_code, 0) << check.output;
+}
+
+// Width and height from a PNG's IHDR chunk (bytes 16–23, big-endian).
+std::pair<int, int> png_size(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  unsigned char header[24] = {};
+  in.read(reinterpret_cast<char*>(header), sizeof header);
+  const auto word = [&](int at) { return (header[at] << 24) | (header[at + 1] << 16) | (header[at + 2] << 8) | header[at + 3]; };
+  return {word(16), word(20)};
+}
+
+TEST(Run, WritesAContactSheetOfTheFramesAskedFor) {
+  const fs::path out = scratch_folder() / "out";
+  const CliResult result = run_cli("run '" + scenario("golden/spread-single.toml") +
+                                   "' --backend cpu --no-hdf5 --contact-sheet 3 --out '" + out.string() + "'");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("contact_sheet.png"), std::string::npos) << result.output;
+  // Three 160 × 120 frames (small enough to stay whole) in a 2 × 2 grid with 4 px gutters.
+  EXPECT_EQ(png_size(out / "contact_sheet.png"), std::make_pair(2 * 160 + 3 * 4, 2 * 120 + 3 * 4));
 }
 
 TEST(Run, TheSameSceneTwiceGivesByteIdenticalFiles) {
