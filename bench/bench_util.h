@@ -30,4 +30,9 @@ inline std::unique_ptr<Backend> backend_or_skip(BackendKind kind, benchmark::Sta
 void register_particle_benchmarks();
 void release_particle_benchmarks();
 
+// bench/frame_bench.cpp: the screen-space frame (spread, splat, blur passes, blend) over a pile of
+// particles. Its scene is kept between the benchmarks of one size; released as the piles are.
+void register_frame_benchmarks();
+void release_frame_benchmarks();
+
 }  // namespace bleedsim

@@ -100,8 +100,10 @@ int main(int argc, char** argv) {
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   bleedsim::register_all();
   bleedsim::register_particle_benchmarks();
+  bleedsim::register_frame_benchmarks();
   benchmark::RunSpecifiedBenchmarks();
   bleedsim::release_particle_benchmarks();
+  bleedsim::release_frame_benchmarks();
   benchmark::Shutdown();
   return 0;
 }

@@ -58,8 +58,8 @@ BLEEDSIM_HD inline void blend_pixel(const std::uint8_t* tissue_rgba, float stain
 // The table transmitted() reads: exp(−k / kTransmissionStepsPerUnit), in double, rounded once.
 void fill_transmission_table(float* table);
 
-// The stage's twins. stain, thickness and transmission may be null: a scene without that effect
-// shows none of it.
+// The stage's twins. stain and thickness_mm may be null: a scene without that effect shows none of
+// it. transmission is needed with thickness_mm.
 struct BlendArgs {
   const std::uint8_t* tissue_rgba;
   const float* stain;

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/splat.h"
+
 namespace bleedsim {
 namespace {
 
@@ -70,6 +72,15 @@ SettingsProblem particle_settings_problem(const Scene& scene) {
                        double(cells_along(scene.domain.height_mm, cell_edge_mm(p)));
   if (cells >= 4.0e9)
     return {"particles.cell_mm", "the collision grid would have " + number(cells) + " cells; at most 4e9"};
+  // The splat sums deposits as integers of bounded size: one particle's film under its centre must fit.
+  const double splat_r = p.splat_radius_mm > 0.0 ? p.splat_radius_mm : p.diameter_mm;
+  const double centre_mm = p.particle_volume_mm3 / (M_PI * splat_r * splat_r / 3.0);
+  const double most_mm = double(kMaxDepositUnits) * double(kSplatUnitMm);
+  if (centre_mm > most_mm)
+    return {"particles.particle_volume_mm3", "a particle of " + number(p.particle_volume_mm3) + " mm³ over a splat radius of " +
+                                                 number(splat_r) + " mm is " + number(centre_mm) +
+                                                 " mm thick under its centre; the splat holds at most " +
+                                                 number(most_mm) + " mm per particle"};
   return {};
 }
 

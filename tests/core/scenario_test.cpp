@@ -812,6 +812,16 @@ TEST(ScenarioParticles, DefaultSubStepsAtALowFrameRateAreRefusedAtTheTable) {
                 .particles->substeps, 44);
 }
 
+TEST(ScenarioParticles, AFilmThickerThanTheSplatCanSumIsRefused) {
+  // 100 mm³ over the default splat radius (the 0.2 mm diameter): 100 / (π·0.04/3) = 2387 mm under
+  // the centre, past the 1e9 units of 2⁻²⁴ mm (59.6 mm) one deposit may hold.
+  EXPECT_TRUE(refused_at(particles_with("particle_volume_mm3 = 100\n"), kParticlesEnd,
+                         "particles.particle_volume_mm3",
+                         "a particle of 100 mm³ over a splat radius of 0.2 mm is 2387 mm thick under its centre; "
+                         "the splat holds at most 59.6 mm per particle"));
+  EXPECT_NO_THROW(parse_scenario(particles_with("particle_volume_mm3 = 2\n"), "x.toml"));  // 47.7 mm: fits
+}
+
 TEST(ScenarioParticles, ParticlesLargerThanThePanel) {
   EXPECT_TRUE(refused_at(particles_with("diameter_mm = 12\n"), kParticlesEnd, "particles.diameter_mm",
                          "particles of 12 mm do not fit in a 16 x 12 mm panel"));

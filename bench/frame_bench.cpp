@@ -1,0 +1,329 @@
+// The screen-space frame against the 30 Hz frame budget (33.3 ms), stage by stage: the spread, the
+// splat, each pass of the blur (downsample, horizontal, vertical, upsample) and the four together,
+// the blend, and the whole frame (spread + splat + the four blur passes + blend). On CUDA at
+// 1920×1080 and 3840×2160 with 1,048,576 particles; on the CPU reference at 1920×1080 with 65,536.
+//
+// The particles are input only (no physics runs): N particles of the default 0.2 mm diameter on a
+// hexagonal lattice at the bottom of the panel, touching, all alive (age 0, a lifetime of 10⁶ s),
+// built on the host and uploaded once. The panel is sized so that they fill its lower 28 %: it is
+// 16:9, 480 × 270 mm for 1,048,576 particles (⌊W/d − ½⌋ = 2,399 per row, 438 rows, a pile 75.9 mm
+// high), scaled by √(N / 2²⁰) for other N (120 × 67.5 mm at 65,536: 599 per row, 110 rows). Its
+// pixels follow from the panel: 0.25 mm/px at 1920×1080 and 0.125 mm/px at 3840×2160 for 1,048,576
+// (the same scene, drawn finer), 0.0625 mm/px at 1920×1080 for 65,536. Splat radius = the diameter
+// (the default), blur defaults (downsample 2, radius 4, sigma 2), and eight half-grown spread cuts
+// placed over the panel as stage_bench places them. docs/benchmarks.md ("The frame") has the rest.
+//
+// One scene per backend, size and N, kept between that group's cases (a static cache, released
+// before main() returns). Before each case one whole frame runs untimed, so every pass reads what
+// the pass before it wrote; then three warm-up runs and kIterations timed runs per repetition
+// (Backend::time_ms: CUDA events around the launches, the CPU's wall clock), five repetitions.
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <exception>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "bench/bench_util.h"
+#include "core/backend.h"
+#include "core/blur_stage.h"
+#include "core/particle_model.h"
+#include "core/scene.h"
+#include "core/splat_stage.h"
+#include "core/tissue.h"
+
+namespace bleedsim {
+namespace {
+
+constexpr double kFrameBudgetMs = 1000.0 / 30.0;
+constexpr int kIterations = 20;  // timed runs per repetition
+constexpr int kRepetitions = 5;
+constexpr int kCutCount = 8;
+// The panel for 2²⁰ particles of the default diameter; other N scale it by √(N / 2²⁰).
+constexpr double kPanelWidthMm = 480.0, kPanelHeightMm = 270.0;
+constexpr double kReferenceParticles = 1048576.0;
+
+enum class Work { spread, splat, downsample, horizontal, vertical, upsample, blur, blend, frame };
+
+const char* name_of(Work work) {
+  switch (work) {
+    case Work::spread: return "spread";
+    case Work::splat: return "splat";
+    case Work::downsample: return "blur_downsample";
+    case Work::horizontal: return "blur_horizontal";
+    case Work::vertical: return "blur_vertical";
+    case Work::upsample: return "blur_upsample";
+    case Work::blur: return "blur";
+    case Work::blend: return "blend";
+    case Work::frame: return "frame";
+  }
+  return "?";
+}
+
+struct Size {
+  const char* name;
+  int width, height;
+};
+constexpr Size k1080p{"1920x1080", 1920, 1080}, k2160p{"3840x2160", 3840, 2160};
+
+// The scene: default particles (capacity N, nothing expires), default blur, the panel for N.
+Scene frame_scene(const Size& size, int n) {
+  Scene scene;
+  scene.name = "settled pile, one frame (bench/frame_bench.cpp)";
+  scene.seed = 1;
+  scene.particles = ParticleParams{};
+  scene.particles->capacity = n;
+  scene.particles->lifetime_s = 1.0e6;  // 1.2e9 steps: every particle is alive and unfaded
+  scene.blur = BlurParams{};
+  const double scale = std::sqrt(double(n) / kReferenceParticles);
+  scene.domain.width_px = size.width;
+  scene.domain.height_px = size.height;
+  scene.domain.width_mm = kPanelWidthMm * scale;
+  scene.domain.height_mm = kPanelHeightMm * scale;
+  return scene;
+}
+
+// One frame's inputs and buffers on one backend.
+struct FrameScene {
+  std::unique_ptr<Backend> backend;
+  Size size;
+  int n;
+  Scene scene;
+  std::string problem;  // why it cannot be measured (empty when it can)
+  int columns = 0, rows = 0;
+  double pile_height_mm = 0.0;
+  std::uint64_t deposits = 0;  // pixel deposits the splat makes per frame
+  double film_max_mm = 0.0;    // the blurred film after one frame: its thickest pixel ...
+  double film_share = 0.0;     // ... and the share of the panel it covers
+
+  Buffer position, age, units, film, weights, low, across, blurred, cuts, stain, tissue, transmission, frame_rgba;
+  SpreadArgs spread_args{};
+  SplatArgs splat_args{};
+  BlurArgs blur_args{};
+  BlendArgs blend_args{};
+
+  FrameScene(std::unique_ptr<Backend> b, const Size& s, int count)
+      : backend(std::move(b)), size(s), n(count), scene(frame_scene(s, count)) {
+    problem = particle_settings_problem(scene).message;
+    if (!problem.empty()) return;
+    const PixelGrid grid = scene.domain.grid();
+    const std::size_t pixels = std::size_t(grid.width) * grid.height;
+
+    // The pile: slot s in row s / columns (row 0 at the bottom), spacing one diameter, age 0.
+    // Even rows start one radius from the left edge, odd rows one diameter.
+    const double d = scene.particles->diameter_mm, r = d / 2.0, row_mm = std::sqrt(3.0) / 2.0 * d;
+    columns = int(std::floor(scene.domain.width_mm / d - 0.5 + 1e-9));
+    rows = (n + columns - 1) / columns;
+    pile_height_mm = (rows - 1) * row_mm + d;
+    std::vector<float> xy(2 * std::size_t(n));
+    for (int slot = 0; slot < n; ++slot) {
+      const int row = slot / columns, column = slot % columns;
+      xy[2 * slot] = float(r + column * d + (row % 2 ? r : 0.0));
+      xy[2 * slot + 1] = float(scene.domain.height_mm - r - row * row_mm);
+    }
+    const std::vector<std::uint32_t> ages(n, 0u);
+    position = backend->allocate(xy.size() * sizeof(float));
+    age = backend->allocate(ages.size() * sizeof(std::uint32_t));
+    backend->upload(position.data(), xy.data(), position.bytes());
+    backend->upload(age.data(), ages.data(), age.bytes());
+
+    // The splat, as SplatStage sets it up.
+    units = backend->allocate(pixels * sizeof(std::uint64_t));
+    film = backend->allocate(pixels * sizeof(float));
+    splat_args.particles = make_particle_model(scene);
+    splat_args.splat = make_splat_model(*scene.particles);
+    splat_args.capacity = n;
+    splat_args.grid = grid;
+    splat_args.units = units.as<std::uint64_t>();
+    splat_args.thickness_mm = film.as<float>();
+    {  // Its deposits, counted on the host from the same positions.
+      SplatArgs host = splat_args;
+      host.position = xy.data();
+      host.age = ages.data();
+      for (int slot = 0; slot < n; ++slot) splat_particle(host, slot, [&](std::size_t, std::uint64_t) { ++deposits; });
+    }
+    splat_args.position = position.as<const float>();
+    splat_args.age = age.as<const std::uint32_t>();
+
+    // The blur, as BlurStage sets it up.
+    const BlurParams& bp = *scene.blur;
+    const std::vector<float> taps = gaussian_weights(bp.radius_px, bp.sigma_px);
+    weights = backend->allocate(taps.size() * sizeof(float));
+    backend->upload(weights.data(), taps.data(), weights.bytes());
+    blur_args.width = grid.width;
+    blur_args.height = grid.height;
+    blur_args.factor = bp.downsample;
+    blur_args.low_width = (grid.width + bp.downsample - 1) / bp.downsample;
+    blur_args.low_height = (grid.height + bp.downsample - 1) / bp.downsample;
+    blur_args.radius = bp.radius_px;
+    const std::size_t low_pixels = std::size_t(blur_args.low_width) * blur_args.low_height;
+    low = backend->allocate(low_pixels * sizeof(float));
+    across = backend->allocate(low_pixels * sizeof(float));
+    blurred = backend->allocate(pixels * sizeof(float));
+    blur_args.weights = weights.as<const float>();
+    blur_args.film = film.as<const float>();
+    blur_args.low = low.as<float>();
+    blur_args.across = across.as<float>();
+    blur_args.blurred = blurred.as<float>();
+
+    // The spread: eight half-grown stains over the panel, overlapping in pairs (stage_bench's).
+    const float w_mm = float(scene.domain.width_mm), h_mm = float(scene.domain.height_mm);
+    std::vector<SpreadCut> host_cuts;
+    for (int c = 0; c < kCutCount; ++c)
+      host_cuts.push_back({w_mm * (0.15f + 0.1f * c), h_mm * (c % 2 ? 0.4f : 0.6f), 0.15f * h_mm, 0.5f});
+    cuts = backend->allocate(host_cuts.size() * sizeof(SpreadCut));
+    backend->upload(cuts.data(), host_cuts.data(), cuts.bytes());
+    stain = backend->allocate(pixels * sizeof(float));
+    spread_args = {cuts.as<const SpreadCut>(), kCutCount, grid, stain.as<float>()};
+
+    // The blend, as BlendStage runs it in a scene with a blurred film: stain and blur/thickness
+    // over the procedural tissue, through the Beer–Lambert table.
+    tissue = backend->allocate(pixels * 4);
+    const Image texture = procedural_tissue(grid.width, grid.height, 1);
+    backend->upload(tissue.data(), texture.rgba.data(), tissue.bytes());
+    std::vector<float> table(kTransmissionEntries);
+    fill_transmission_table(table.data());
+    transmission = backend->allocate(table.size() * sizeof(float));
+    backend->upload(transmission.data(), table.data(), transmission.bytes());
+    frame_rgba = backend->allocate(pixels * 4);
+    blend_args = {tissue.as<const std::uint8_t>(), stain.as<const float>(), blurred.as<const float>(),
+                  transmission.as<const float>(), grid.width, grid.height, frame_rgba.as<std::uint8_t>()};
+
+    // One frame, to see that the film is there.
+    frame();
+    std::vector<float> result(pixels);
+    backend->download(result.data(), blurred.data(), blurred.bytes());
+    std::size_t covered = 0;
+    for (const float v : result) {
+      film_max_mm = std::max(film_max_mm, double(v));
+      covered += v > 0.0f;
+    }
+    film_share = double(covered) / double(pixels);
+  }
+
+  void spread() { backend->spread(spread_args); }
+  void splat() { backend->splat(splat_args); }
+  void blur(BlurPhase phase) { backend->blur(phase, blur_args); }
+  void blur() {
+    for (BlurPhase phase : {BlurPhase::downsample, BlurPhase::horizontal, BlurPhase::vertical, BlurPhase::upsample})
+      blur(phase);
+  }
+  void blend() { backend->blend(blend_args); }
+  void frame() {
+    spread();
+    splat();
+    blur();
+    blend();
+  }
+  void run(Work work) {
+    switch (work) {
+      case Work::spread: spread(); break;
+      case Work::splat: splat(); break;
+      case Work::downsample: blur(BlurPhase::downsample); break;
+      case Work::horizontal: blur(BlurPhase::horizontal); break;
+      case Work::vertical: blur(BlurPhase::vertical); break;
+      case Work::upsample: blur(BlurPhase::upsample); break;
+      case Work::blur: blur(); break;
+      case Work::blend: blend(); break;
+      case Work::frame: frame(); break;
+    }
+  }
+};
+
+// One scene at a time: the cases of a backend, size and N run one after another and share it.
+std::unique_ptr<FrameScene>& cached_scene() {
+  static std::unique_ptr<FrameScene> scene;
+  return scene;
+}
+
+FrameScene* scene_or_skip(BackendKind kind, const Size& size, int n, benchmark::State& state) {
+  std::unique_ptr<FrameScene>& scene = cached_scene();
+  if (scene && scene->backend->kind() == kind && scene->size.width == size.width &&
+      scene->size.height == size.height && scene->n == n)
+    return scene.get();
+  scene.reset();
+  std::unique_ptr<Backend> backend = backend_or_skip(kind, state);
+  if (!backend) return nullptr;
+  scene = std::make_unique<FrameScene>(std::move(backend), size, n);
+  return scene.get();
+}
+
+void time_frame(benchmark::State& state, BackendKind kind, const Size& size, int n, Work work) {
+  try {
+    FrameScene* scene = scene_or_skip(kind, size, n, state);
+    if (!scene) return;
+    if (!scene->problem.empty()) {
+      state.SkipWithError(("frame not measured: " + scene->problem).c_str());
+      return;
+    }
+    scene->frame();  // every buffer holds what a frame leaves in it
+    for (int i = 0; i < kWarmUpRuns; ++i) scene->run(work);
+    double total_ms = 0.0;
+    for (auto _ : state) {
+      const double ms = scene->backend->time_ms([&] { scene->run(work); });
+      state.SetIterationTime(ms / 1000.0);
+      total_ms += ms;
+    }
+    scene->backend->synchronize();
+    const double ms = total_ms / double(state.iterations());
+    state.counters["ms"] = ms;
+    state.counters["frame_budget_%"] = 100.0 * ms / kFrameBudgetMs;
+    // Throughput in what the work is made of: particles for the splat, the pixels it writes
+    // otherwise (the downsampled grid's for the downsample and the two Gaussian passes).
+    const double panel = double(size.width) * size.height;
+    const double low = double(scene->blur_args.low_width) * scene->blur_args.low_height;
+    switch (work) {
+      case Work::splat:
+        state.counters["Mparticle/s"] = double(n) / (ms * 1e3);
+        state.counters["deposits/particle"] = double(scene->deposits) / n;
+        break;
+      case Work::downsample:
+      case Work::horizontal:
+      case Work::vertical: state.counters["Mpixel/s"] = low / (ms * 1e3); break;
+      case Work::frame:
+        state.counters["Mpixel/s"] = panel / (ms * 1e3);
+        state.counters["Mparticle/s"] = double(n) / (ms * 1e3);
+        state.counters["film_max_mm"] = scene->film_max_mm;
+        state.counters["film_%"] = 100.0 * scene->film_share;
+        break;
+      default: state.counters["Mpixel/s"] = panel / (ms * 1e3); break;
+    }
+    char scale[32];
+    std::snprintf(scale, sizeof scale, "%g mm/px", double(scene->scene.domain.grid().mm_per_px_x));
+    state.SetLabel(scene->backend->device_name() + ", " + scale);
+  } catch (const std::exception& e) {
+    state.SkipWithError((std::string("frame not measured: ") + e.what()).c_str());
+  }
+}
+
+void register_case(BackendKind kind, const Size& size, int n, Work work) {
+  const std::string name = std::string("Frame/") + to_string(kind) + "/" + name_of(work) + "/" + size.name + "/" +
+                           std::to_string(n);
+  benchmark::RegisterBenchmark(name.c_str(), [kind, size, n, work](benchmark::State& state) {
+    time_frame(state, kind, size, n, work);
+  })
+      ->UseManualTime()
+      ->Iterations(kIterations)
+      ->Unit(benchmark::kMillisecond)
+      ->Repetitions(kRepetitions)
+      ->ReportAggregatesOnly(true)
+      ->DisplayAggregatesOnly(true);
+}
+
+}  // namespace
+
+void register_frame_benchmarks() {
+  // Grouped by backend, size and N, so each scene is built once.
+  const Work works[] = {Work::spread,   Work::splat, Work::downsample, Work::horizontal, Work::vertical,
+                        Work::upsample, Work::blur,  Work::blend,      Work::frame};
+  for (const Work work : works) register_case(BackendKind::cpu, k1080p, 65536, work);
+  for (const Size& size : {k1080p, k2160p})
+    for (const Work work : works) register_case(BackendKind::cuda, size, 1048576, work);
+}
+
+void release_frame_benchmarks() { cached_scene().reset(); }
+
+}  // namespace bleedsim
