@@ -48,5 +48,32 @@ TEST(Pipeline, EstimatesExactlyWhatItAllocates) {
   }
 }
 
+// The screen-space stages follow the scene: particles bring the splat; only [blur] brings the blur;
+// the blend lays over the tissue whichever film the scene makes.
+TEST(Pipeline, TheFilmsStagesRunOnlyWhenTheSceneCallsForThem) {
+  Scene particles = test::scene_in_code(false);
+  particles.particles = ParticleParams{};
+  particles.particles->capacity = 256;
+  particles.cuts = {particles.cut_at(8.0, 4.0, 0.0)};
+  Scene blurred = particles;
+  blurred.blur = BlurParams{};
+
+  Simulation raw(particles, kCpu), soft(blurred, kCpu);
+  for (int k = 0; k < 3; ++k) raw.step(), soft.step();
+  EXPECT_EQ(Pipeline::stage_names(particles), (std::vector<std::string>{"particles", "splat", "blend"}));
+  EXPECT_EQ(Pipeline::stage_names(blurred), (std::vector<std::string>{"particles", "splat", "blur", "blend"}));
+  EXPECT_EQ(raw.backend().launches("splat"), 3u);
+  EXPECT_EQ(raw.backend().launches("blur"), 0u);
+  EXPECT_EQ(soft.backend().launches("blur"), 3u * 4);  // four passes a frame
+  EXPECT_THROW(raw.field("blur/thickness"), std::out_of_range);
+  // Both make the same film; only the blurred scene's frame shows it softened.
+  EXPECT_EQ(raw.copy_field("splat/thickness"), soft.copy_field("splat/thickness"));
+  EXPECT_NE(raw.copy_field("frame"), soft.copy_field("frame"));
+  // A spread-only scene allocates nothing for a film: no splat, blur or Beer–Lambert table.
+  Simulation spread(test::scene_in_code(true), kCpu);
+  EXPECT_EQ(spread.backend().launches("splat"), 0u);
+  EXPECT_EQ(Pipeline::backend_bytes(test::scene_in_code(true)), spread.backend().bytes_in_use());
+}
+
 }  // namespace
 }  // namespace bleedsim
