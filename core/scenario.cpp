@@ -19,6 +19,7 @@
 #include <utility>
 
 #include "core/memory.h"
+#include "core/message_text.h"
 #include "core/particle_model.h"
 #include "core/pipeline.h"
 #include "core/tissue.h"
@@ -40,16 +41,6 @@ const KnownField kFields[] = {{"spread/stain", "spread"},          {"splat/thick
 
 constexpr std::int64_t kMaxFrames = 10'000'000;
 
-// The shortest text that reads back as the same double, so "must be at most 16 (got 16.0000001)"
-// never prints as "(got 16)".
-std::string format_number(double value) {
-  char text[32];
-  for (int digits = 6; digits <= 17; ++digits) {
-    std::snprintf(text, sizeof text, "%.*g", digits, value);
-    if (std::strtod(text, nullptr) == value) break;
-  }
-  return text;
-}
 
 const char* kind_of(const toml::node& node) {
   switch (node.type()) {
@@ -61,21 +52,6 @@ const char* kind_of(const toml::node& node) {
     case toml::node_type::array: return "an array";
     default: return "a date or time";
   }
-}
-
-std::size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] != b[j - 1])});
-      diagonal = up;
-    }
-  }
-  return row[b.size()];
 }
 
 // An allowed interval for a number; `above` makes the lower end exclusive (sizes must be > 0).
