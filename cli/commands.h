@@ -26,5 +26,6 @@ int run_command(const RunOptions& options);
 int validate_command(const std::string& scenario);
 int hash_command(const std::string& scenario, const BackendChoice& backend);
 int info_command();
+int trace_info_command(const std::string& path, double max_repair_gap_ms);
 
 }  // namespace bleedsim::cli

@@ -74,6 +74,17 @@ int main(int argc, char** argv) {
 
   CLI::App* info_cmd = app.add_subcommand("info", "version, build flags and available backends");
 
+  CLI::App* trace_cmd = app.add_subcommand("trace", "recorded Falcon stylus traces (docs/traces.md)");
+  trace_cmd->require_subcommand(1);
+  std::string trace_path;
+  double repair_gap_ms = 0.0;
+  CLI::App* trace_info_cmd = trace_cmd->add_subcommand("info", "check a trace and describe it: duration, rate, "
+                                                               "workspace used, cuts, repairs");
+  trace_info_cmd->add_option("trace", trace_path, "trace file (.csv)")->required();
+  trace_info_cmd->add_option("--repair-gap-ms", repair_gap_ms,
+                             "fill dropouts up to this long by interpolation instead of refusing them (0: none)")
+      ->check(CLI::Range(0.0, 1000.0));
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -90,6 +101,7 @@ int main(int argc, char** argv) {
     if (*validate_cmd) return validate_command(validate_path);
     if (*hash_cmd) return hash_command(hash_path, hash_backend.choice());
     if (*info_cmd) return info_command();
+    if (*trace_info_cmd) return trace_info_command(trace_path, repair_gap_ms);
   } catch (const bleedsim::InputError& e) {
     std::cerr << "bleedsim: error: " << e.what() << "\n";
     return kExitBadInput;
