@@ -22,7 +22,7 @@ BLEEDSIM_HD inline std::uint8_t byte_from_unit(float v) {
 // and a pool darkens towards black.
 constexpr float kBloodAbsorbsRedPerMm = 4.0f, kBloodAbsorbsGreenPerMm = 40.0f, kBloodAbsorbsBluePerMm = 45.0f;
 
-// exp(−x) from a table computed once on the host (transmission_table()), linearly interpolated:
+// exp(−x) from a table computed once on the host (fill_transmission_table()), linearly interpolated:
 // expf differs between the host's libm and the device, a table read the same way does not.
 constexpr int kTransmissionStepsPerUnit = 64;
 constexpr int kTransmissionEntries = 32 * kTransmissionStepsPerUnit + 1;  // x in [0, 32]

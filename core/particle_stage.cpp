@@ -42,7 +42,7 @@ ParticleStage::ParticleStage(const Scene& scene, State& state, Backend& backend)
     : Stage("particles"),
       accounting_(std::uint64_t(scene.particles->capacity), make_particle_model(scene).lifetime_steps) {
   const int capacity = scene.particles->capacity;
-  ParticleModel model = make_particle_model(scene);
+  const ParticleModel model = make_particle_model(scene);
   ParticleArrays& a = args_.arrays;
   a.capacity = capacity;
   Field& position = add_field(state, backend, element_field("particles/position", ElementType::f32, 2, capacity, true,
@@ -99,7 +99,7 @@ void ParticleStage::emit(const Scene& scene, const State& state, Backend& backen
   // More new particles than slots: only the newest `capacity` are written; the older ones are
   // overwritten in the same step (the accounting has counted them so).
   std::uint64_t skip = total > capacity ? total - capacity : 0, first_new = 0;
-  std::vector<Emitter> kept;
+  std::size_t kept = 0;
   for (Emitter e : new_) {
     const std::uint64_t dropped = std::min<std::uint64_t>(skip, e.count);
     skip -= dropped;
@@ -108,9 +108,9 @@ void ParticleStage::emit(const Scene& scene, const State& state, Backend& backen
     e.count -= std::uint32_t(dropped);
     e.first_new = std::uint32_t(first_new);
     first_new += e.count;
-    kept.push_back(e);
+    new_[kept++] = e;
   }
-  new_ = std::move(kept);
+  new_.resize(kept);
   const std::size_t bytes = new_.size() * sizeof(Emitter);
   if (bytes > emitters_.bytes()) emitters_ = allocate(backend, 2 * bytes);
   backend.upload(emitters_.data(), new_.data(), bytes);

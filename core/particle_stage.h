@@ -18,8 +18,6 @@ class ParticleStage final : public Stage {
   static std::size_t bytes_for(const Scene& scene);
   void run(const Scene& scene, State& state, Backend& backend) override;
 
-  const ParticleAccounting& accounting() const { return accounting_; }
-
  private:
   void emit(const Scene& scene, const State& state, Backend& backend, std::uint64_t step);
   // Points the step at the live particles, from the accounting (the ids in [oldest alive, emitted)).
