@@ -35,4 +35,7 @@ void release_particle_benchmarks();
 void register_frame_benchmarks();
 void release_frame_benchmarks();
 
+// bench/haptic_bench.cpp: the haptic tick, and a trace-driven run's tick and frame percentiles.
+void register_haptic_benchmarks();
+
 }  // namespace bleedsim

@@ -101,6 +101,7 @@ int main(int argc, char** argv) {
   bleedsim::register_all();
   bleedsim::register_particle_benchmarks();
   bleedsim::register_frame_benchmarks();
+  bleedsim::register_haptic_benchmarks();
   benchmark::RunSpecifiedBenchmarks();
   bleedsim::release_particle_benchmarks();
   bleedsim::release_frame_benchmarks();

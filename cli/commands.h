@@ -3,8 +3,10 @@
 // 2 bad input (a scenario, texture, option or output path), 130 interrupted.
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "core/backend.h"
+#include "core/trace_synth.h"
 
 namespace bleedsim::cli {
 
@@ -27,5 +29,14 @@ int validate_command(const std::string& scenario);
 int hash_command(const std::string& scenario, const BackendChoice& backend);
 int info_command();
 int trace_info_command(const std::string& path, double max_repair_gap_ms);
+
+struct SynthOptions {
+  std::string out;
+  SynthSpec spec;                    // its strokes replaced by `strokes` when any are given
+  std::vector<std::string> strokes;  // each --stroke as given: x0,y0,x1,y1 in mm
+  bool force = false;                // overwrite `out` if it exists
+};
+
+int trace_synth_command(const SynthOptions& options);
 
 }  // namespace bleedsim::cli

@@ -1,7 +1,10 @@
 // bleedsim: a thin command line over the library (core/simulation.h).
 #include <CLI/CLI.hpp>
 
+#include <cerrno>
+#include <cstdlib>
 #include <exception>
+#include <initializer_list>
 #include <iostream>
 #include <string>
 
@@ -12,6 +15,7 @@
 namespace {
 
 using bleedsim::BackendChoice;
+using bleedsim::SynthSpec;
 using namespace bleedsim::cli;
 
 // --backend and --threads, shared by the commands that run a scene.
@@ -35,6 +39,17 @@ void add_backend_options(CLI::App& command, BackendOptions& options) {
                      "CPU threads for the cpu backend (0: one per hardware thread)")
       ->check(CLI::Range(0, 4096))
       ->capture_default_str();
+}
+
+// A seed as a plain decimal: CLI11 alone would read "-1" as 2^64 - 1 and "010" as octal 8.
+std::string decimal_seed(std::string& text) {
+  if (text.empty() || text.find_first_not_of("0123456789") != std::string::npos)
+    return "must be a whole number, 0 or more (got '" + text + "')";
+  errno = 0;
+  const unsigned long long seed = std::strtoull(text.c_str(), nullptr, 10);
+  if (errno == ERANGE) return "must be at most " + std::to_string(seed) + " (got " + text + ")";
+  text = std::to_string(seed);
+  return "";
 }
 
 }  // namespace
@@ -85,6 +100,38 @@ int main(int argc, char** argv) {
                              "fill dropouts up to this long by interpolation instead of refusing them (0: none)")
       ->check(CLI::Range(0.0, 1000.0));
 
+  // Ranges are checked by synthesize_trace, which names the option at fault.
+  SynthOptions synth;
+  SynthSpec& spec = synth.spec;
+  CLI::App* trace_synth_cmd = trace_cmd->add_subcommand(
+      "synth", "write a realistic synthetic trace: cutting strokes with a hand tremor, the same for the same seed");
+  trace_synth_cmd->add_option("-o,--out", synth.out, "trace file to write (.csv)")->required();
+  trace_synth_cmd->add_option("--seed", spec.seed, "draws the tremor")
+      ->transform(CLI::Validator(decimal_seed, ""))
+      ->capture_default_str();
+  trace_synth_cmd->add_option("--stroke", synth.strokes,
+                              "a cut from (x0, y0) to (x1, y1), mm in the device frame (x right, y up), as "
+                              "x0,y0,x1,y1; repeat for more strokes (default: one, -10,0,10,0)")
+      ->allow_extra_args(false);
+  struct SynthNumber {
+    const char* option;
+    double* value;
+    const char* help;
+  };
+  for (const SynthNumber& number : std::initializer_list<SynthNumber>{
+           {"--surface-z-mm", &spec.surface_z_mm, "device z of the tissue surface"},
+           {"--depth-mm", &spec.depth_mm, "how far below the surface a stroke cuts"},
+           {"--hover-mm", &spec.hover_mm, "how far above the surface the tool waits"},
+           {"--speed-mm-s", &spec.speed_mm_s, "speed along a stroke"},
+           {"--approach-s", &spec.approach_s, "from hover down to the surface"},
+           {"--press-s", &spec.press_s, "from the surface down to depth, button held"},
+           {"--lift-s", &spec.lift_s, "from depth back up to hover, button released"},
+           {"--pause-s", &spec.pause_s, "above the tissue before the first stroke, between strokes and after the last"},
+           {"--tremor-um", &spec.tremor_um, "peak hand tremor per axis, 8-12 Hz (0: none)"},
+           {"--rate-hz", &spec.rate_hz, "samples per second (900 to 1100)"}})
+    trace_synth_cmd->add_option(number.option, *number.value, number.help)->capture_default_str();
+  trace_synth_cmd->add_flag("--force", synth.force, "overwrite the file if it exists");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -102,6 +149,7 @@ int main(int argc, char** argv) {
     if (*hash_cmd) return hash_command(hash_path, hash_backend.choice());
     if (*info_cmd) return info_command();
     if (*trace_info_cmd) return trace_info_command(trace_path, repair_gap_ms);
+    if (*trace_synth_cmd) return trace_synth_command(synth);
   } catch (const bleedsim::InputError& e) {
     std::cerr << "bleedsim: error: " << e.what() << "\n";
     return kExitBadInput;

@@ -21,6 +21,7 @@
 #include "core/png_writer.h"
 #include "core/scenario.h"
 #include "core/simulation.h"
+#include "core/timing_summary.h"
 
 namespace bleedsim::cli {
 namespace {
@@ -92,6 +93,18 @@ void remove_old_pngs(const fs::path& folder) {
   }
 }
 
+// What the replay will play: the trace, its repairs, and how its span meets the run's.
+void describe_replay(const Scene& s) {
+  const Trace& trace = *s.trace;
+  const double span_s = trace.samples.back().t_s - trace.samples.front().t_s;
+  std::printf("bleedsim: replaying %s: %zu samples over %.3f s through the 1 kHz haptic loop", trace.path.c_str(),
+              trace.samples.size(), span_s);
+  if (span_s < s.duration_s) std::printf(" (after it ends the stylus stays where the trace left it)");
+  if (span_s > s.duration_s) std::printf(" (the run ends %.3f s before the trace)", span_s - s.duration_s);
+  std::printf("\n");
+  for (const std::string& repair : trace.repairs) std::printf("bleedsim: repaired %s\n", repair.c_str());
+}
+
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
@@ -120,7 +133,7 @@ int run_command(const RunOptions& options) {
   if (options.hdf5) {
     try {
       writer = std::make_unique<Hdf5FrameWriter>(h5_path.string(), specs, provenance(sim),
-                                                 s.output.deflate_level);
+                                                 s.output.deflate_level, s.trace.has_value());
     } catch (const std::runtime_error& e) {
       throw folder.error(e.what());
     }
@@ -139,6 +152,7 @@ int run_command(const RunOptions& options) {
     std::printf("bleedsim: %s: %ld frames of %d x %d px on %s (%s; %s)\n", s.name.c_str(), frames,
                 s.domain.width_px, s.domain.height_px, to_string(sim.backend().kind()),
                 sim.backend().device_name().c_str(), sim.backend_reason().c_str());
+  if (!options.quiet && s.trace) describe_replay(s);
   std::fflush(stdout);
 
   std::vector<std::vector<std::uint8_t>> host(specs.size());
@@ -152,13 +166,16 @@ int run_command(const RunOptions& options) {
   Progress progress(frames, !options.quiet && isatty(STDERR_FILENO));
   const Clock::time_point start = Clock::now();
   double simulate_s = 0.0;
+  std::vector<double> frame_seconds, tick_seconds;
   long pngs = 0;
   for (long k = 0; k < frames && !interrupted; ++k) {
     const Clock::time_point step_start = Clock::now();
     sim.step();
     for (std::size_t f = 0; f < specs.size(); ++f) sim.copy_field(specs[f].name, host[f].data());
-    simulate_s += seconds_since(step_start);
-    if (writer) writer->append(sim.time_s(), pointers);
+    frame_seconds.push_back(seconds_since(step_start));
+    simulate_s += frame_seconds.back();
+    tick_seconds.insert(tick_seconds.end(), sim.haptic_tick_seconds().begin(), sim.haptic_tick_seconds().end());
+    if (writer) writer->append(sim.time_s(), pointers, sim.haptic_ticks());
     if (png_due(k, frames, png_every)) {
       write_png_rgba((png_folder / png_name(k)).string(), s.domain.width_px, s.domain.height_px,
                      host[0].data());
@@ -183,10 +200,16 @@ int run_command(const RunOptions& options) {
                  wrote.c_str());
     return kExitInterrupted;
   }
-  if (!options.quiet)
-    std::printf("bleedsim: %ld frames in %.2f s (%.2f ms/frame, simulation %.2f ms/frame) on %s (%s); wrote %s\n",
-                done, wall_s, 1000.0 * wall_s / double(done), 1000.0 * simulate_s / double(done),
-                to_string(sim.backend().kind()), sim.backend().device_name().c_str(), wrote.c_str());
+  if (options.quiet) return 0;
+  std::printf("bleedsim: %ld frames in %.2f s (%.2f ms/frame, simulation %.2f ms/frame) on %s (%s); wrote %s\n",
+              done, wall_s, 1000.0 * wall_s / double(done), 1000.0 * simulate_s / double(done),
+              to_string(sim.backend().kind()), sim.backend().device_name().c_str(), wrote.c_str());
+  std::printf("bleedsim: frame compute %s\n",
+              describe_against_budget(percentiles_of(frame_seconds), "frames", 1.0 / s.frame_rate_hz).c_str());
+  if (s.trace)
+    std::printf("bleedsim: haptic tick compute %s; %zu cuts made\n",
+                describe_against_budget(percentiles_of(tick_seconds), "ticks", kHapticBudget_s).c_str(),
+                sim.cuts().size() - s.cuts.size());
   return 0;
 }
 

@@ -1,11 +1,21 @@
 // bleedsim trace info: what a recorded Falcon trace holds, after the loader has checked it.
+// bleedsim trace synth: a synthetic trace written to a file, whole or not at all.
 #include <algorithm>
+#include <cerrno>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
 #include <string>
+#include <system_error>
 #include <vector>
 
 #include "cli/commands.h"
 #include "core/trace.h"
+#include "core/trace_synth.h"
 
 namespace bleedsim::cli {
 namespace {
@@ -35,6 +45,70 @@ double median_interval_s(const Trace& trace) {
   return dt[dt.size() / 2];
 }
 
+namespace fs = std::filesystem;
+
+// "x0,y0,x1,y1" in mm, as --stroke takes it.
+StrokeSpec parse_stroke(const std::string& text) {
+  std::vector<double> values;
+  for (std::size_t begin = 0;;) {
+    const std::size_t comma = text.find(',', begin);
+    const std::string field = text.substr(begin, comma == std::string::npos ? comma : comma - begin);
+    char* end = nullptr;
+    values.push_back(std::strtod(field.c_str(), &end));
+    if (field.empty() || *end != '\0' || !std::isfinite(values.back())) break;
+    if (comma == std::string::npos) {
+      if (values.size() == 4) return {values[0], values[1], values[2], values[3]};
+      break;
+    }
+    begin = comma + 1;
+  }
+  throw InputError(SourcePlace{}, "--stroke", "expected x0,y0,x1,y1: four numbers of mm, comma-separated (got '" +
+                                                  text + "')");
+}
+
+// The text as the loader reads it. What the loader refuses here is a fault of the generator, not
+// bad input: it fails (exit 1) rather than blaming an option.
+Trace read_back(const std::string& text, const std::string& path) {
+  try {
+    return parse_trace(text, path);
+  } catch (const InputError& e) {
+    throw std::runtime_error(std::string("the synthesised trace does not read back: ") + e.what());
+  }
+}
+
+void refuse_out(const std::string& path, const std::string& message) {
+  throw InputError(SourcePlace{path, 0, 0}, "--out", message);
+}
+
+// --out names a file; one that exists already is replaced only with --force.
+void check_out(const std::string& path, bool force) {
+  if (path.empty()) refuse_out(path, "must not be empty");
+  std::error_code ec;
+  const fs::file_status status = fs::symlink_status(path, ec);
+  if (fs::is_directory(status)) refuse_out(path, "is a folder; name the trace file to write");
+  if (fs::exists(status) && !force) refuse_out(path, "exists already; pass --force to overwrite it");
+}
+
+// Through FILE.partial and a rename, so that FILE is either the whole trace or untouched.
+void write_whole(const std::string& path, const std::string& text) {
+  const std::string partial = path + ".partial";
+  errno = 0;
+  std::ofstream out(partial, std::ios::binary | std::ios::trunc);
+  if (!out) refuse_out(path, "cannot write '" + partial + "': " + std::strerror(errno ? errno : ENOENT));
+  out << text;
+  out.close();
+  std::error_code ec, ignored;
+  if (!out) {
+    fs::remove(partial, ignored);
+    refuse_out(path, "cannot write '" + partial + "' (is the disk full?)");
+  }
+  fs::rename(partial, path, ec);
+  if (ec) {
+    fs::remove(partial, ignored);
+    refuse_out(path, "cannot rename '" + partial + "' to it: " + ec.message());
+  }
+}
+
 }  // namespace
 
 int trace_info_command(const std::string& path, double max_repair_gap_ms) {
@@ -62,6 +136,23 @@ int trace_info_command(const std::string& path, double max_repair_gap_ms) {
   for (const Press& p : cuts) std::printf("%s %.3f-%.3f s", &p == &cuts.front() ? ":" : ",", p.start_s, p.end_s);
   std::printf("\n  gaps       %zu repaired\n", trace.repairs.size());
   for (const std::string& repair : trace.repairs) std::printf("    %s\n", repair.c_str());
+  return 0;
+}
+
+int trace_synth_command(const SynthOptions& options) {
+  SynthSpec spec = options.spec;
+  if (!options.strokes.empty()) {
+    spec.strokes.clear();
+    for (const std::string& stroke : options.strokes) spec.strokes.push_back(parse_stroke(stroke));
+  }
+  const std::string text = synthesize_trace(spec);
+  check_out(options.out, options.force);
+  const Trace trace = read_back(text, options.out);
+  write_whole(options.out, text);
+  const std::size_t strokes = spec.strokes.size();
+  std::printf("wrote %s: %zu samples over %.3f s at %g Hz, %zu stroke%s, seed %llu\n", options.out.c_str(),
+              trace.samples.size(), trace.samples.back().t_s - trace.samples.front().t_s, trace.rate_hz, strokes,
+              strokes == 1 ? "" : "s", static_cast<unsigned long long>(spec.seed));
   return 0;
 }
 

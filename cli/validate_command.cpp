@@ -1,13 +1,46 @@
 // bleedsim validate: check a scenario and say what a run of it would do.
+#include <algorithm>
 #include <cstdio>
 #include <string>
 
 #include "cli/commands.h"
 #include "core/memory.h"
+#include "core/haptics.h"
 #include "core/pipeline.h"
 #include "core/scenario.h"
+#include "core/trace_replay.h"
 
 namespace bleedsim::cli {
+namespace {
+
+// The stylus: its contact parameters, and what replaying the trace over the run would do (the
+// haptic loop alone is cheap: no frame is computed).
+void describe_haptics(const Scene& scene) {
+  const HapticParams& h = *scene.haptics;
+  std::printf("  haptics    surface z = %g mm; k %g N/m, b %g N·s/m, cap %g N; passive: k·T/2 + |b| = %g < %g N·s/m\n",
+              h.surface_z_mm, h.stiffness_N_per_m, h.damping_Ns_per_m, h.max_force_N,
+              h.stiffness_N_per_m * kHapticPeriod_s / 2 + h.damping_Ns_per_m, h.device_damping_Ns_per_m);
+  const Trace& trace = *scene.trace;
+  HapticLoop loop(scene);
+  const std::int64_t ticks = scene.haptic_ticks_through_frame(scene.frame_count() - 1);
+  std::int64_t contact = 0, cutting = 0, cuts = 0;
+  double peak_N = 0;
+  for (std::int64_t n = 0; n < ticks; ++n) {
+    const HapticStep step = loop.tick(trace_sample_at_tick(trace, n));
+    contact += step.record.contact;
+    cutting += step.record.cutting;
+    cuts += step.cut.has_value();
+    peak_N = std::max(peak_N, step.record.force_N.norm());
+  }
+  std::printf("  trace      %s: %zu samples over %.3f s%s\n", trace.path.c_str(), trace.samples.size(),
+              trace.samples.back().t_s - trace.samples.front().t_s,
+              trace.repairs.empty() ? "" : (", " + std::to_string(trace.repairs.size()) + " dropouts repaired").c_str());
+  std::printf("  stylus     %lld ticks: in contact %lld, cutting %lld; %lld cuts; peak force %.3g N\n",
+              static_cast<long long>(ticks), static_cast<long long>(contact), static_cast<long long>(cutting),
+              static_cast<long long>(cuts), peak_N);
+}
+
+}  // namespace
 
 int validate_command(const std::string& scenario) {
   const Scene scene = load_scenario(scenario);
@@ -20,8 +53,9 @@ int validate_command(const std::string& scenario) {
   std::printf("  time       %g s at %g Hz: %d frames\n", scene.duration_s, scene.frame_rate_hz,
               scene.frame_count());
   std::printf("  tissue     %s\n", scene.tissue_source.c_str());
-  std::printf("  cuts       %zu\n", scene.cuts.size());
+  std::printf("  cuts       %zu%s\n", scene.cuts.size(), scene.trace ? " scripted, and the stylus' (below)" : "");
   std::printf("  stages     %s\n", stages.c_str());
+  if (scene.trace) describe_haptics(scene);
   std::printf("  memory     %s on the backend\n", human_bytes(double(Pipeline::backend_bytes(scene))).c_str());
   std::printf("  output     %s (HDF5 %s, PNG %s)\n", scene.output.dir.c_str(),
               scene.output.hdf5 ? "on" : "off",

@@ -4,6 +4,8 @@ find_package(PkgConfig REQUIRED)
 # toml++ and CLI11 are used header-only: nothing to ship beside the binaries.
 find_path(TOMLPP_INCLUDE_DIR toml++/toml.h REQUIRED)
 find_package(CLI11 CONFIG REQUIRED)
+# Eigen (header-only) for the haptics' host-side geometry.
+find_package(Eigen3 3.3 REQUIRED NO_MODULE)
 find_path(STB_INCLUDE_DIR stb/stb_image_write.h REQUIRED)
 
 # HDF5 (C API). For the GPU machine, which has no HDF5, link the static archives Debian ships.

@@ -1,5 +1,6 @@
 #include "core/frame_hash.h"
 
+#include "core/haptic_channel.h"
 #include "core/hash.h"
 
 namespace bleedsim {
@@ -10,6 +11,7 @@ std::vector<std::pair<std::string, std::uint64_t>> hash_fields(const Simulation&
     const std::vector<std::uint8_t> bytes = simulation.copy_field(name);
     hashes.emplace_back(name, fnv1a64(bytes.data(), bytes.size()));
   }
+  if (simulation.scene().trace) hashes.emplace_back("haptics", haptic_channel_hash(simulation.haptic_ticks()));
   return hashes;
 }
 

@@ -11,6 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include "core/haptic_channel.h"
+
 namespace bleedsim {
 namespace {
 
@@ -245,26 +247,33 @@ GrowingDataset create_growing_dataset(const Checker& check, hid_t parent, const 
   return {where, memory_type, std::move(frame_shape), std::move(dataset)};
 }
 
-// Grows the dataset to frame + 1 entries and writes `data` (one frame) as the last one.
-void write_frame(const Checker& check, const GrowingDataset& target, hsize_t frame,
-                 const void* data) {
+// Grows the dataset to first + rows entries and writes `data` (that many entries) as the last ones.
+void write_rows(const Checker& check, const GrowingDataset& target, hsize_t first, hsize_t rows,
+                const void* data) {
   const std::string& where = target.where;
   std::vector<hsize_t> dims = target.frame_shape;
-  dims[0] = frame + 1;
+  dims[0] = first + rows;
   check(H5Dset_extent(target.dataset.get(), dims.data()), "extend dataset " + where);
+  if (rows == 0) return;
 
   Dataspace file_space{check(H5Dget_space(target.dataset.get()), "get the dataspace of " + where)};
   std::vector<hsize_t> start(dims.size(), 0);
-  start[0] = frame;
-  const std::vector<hsize_t>& count = target.frame_shape;
+  start[0] = first;
+  std::vector<hsize_t> count = target.frame_shape;
+  count[0] = rows;
+  const std::string entries = "entries " + std::to_string(first) + ".." + std::to_string(first + rows - 1);
   check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(),
                             nullptr),
-        "select frame " + std::to_string(frame) + " of " + where);
+        "select " + entries + " of " + where);
   Dataspace memory_space{check(H5Screate_simple(int(count.size()), count.data(), nullptr),
                                "create the memory dataspace of " + where)};
   check(H5Dwrite(target.dataset.get(), target.memory_type, memory_space.get(), file_space.get(),
                  H5P_DEFAULT, data),
-        "write frame " + std::to_string(frame) + " of " + where);
+        "write " + entries + " of " + where);
+}
+
+void write_frame(const Checker& check, const GrowingDataset& target, hsize_t frame, const void* data) {
+  write_rows(check, target, frame, 1, data);
 }
 
 // --- Checks on the caller's input ----------------------------------------------------------------
@@ -325,7 +334,9 @@ struct Hdf5FrameWriter::Impl {
   File file;
   GrowingDataset time;
   std::vector<GrowingDataset> fields;
+  std::vector<GrowingDataset> haptics;  // one per haptic column, when the run has the channel
   std::int64_t frames = 0;
+  std::int64_t ticks = 0;
   bool finished = false;
 
   void write_root_attribute(const std::string& name, hid_t stored_type, hid_t memory_type,
@@ -343,7 +354,7 @@ struct Hdf5FrameWriter::Impl {
 
 Hdf5FrameWriter::Hdf5FrameWriter(const std::string& path, const std::vector<FieldLayout>& fields,
                                  const std::vector<std::pair<std::string, std::string>>& attributes,
-                                 int deflate_level)
+                                 int deflate_level, bool haptic_channel)
     : impl_(std::make_unique<Impl>()) {
   validate(fields, attributes, deflate_level);
   // Errors come back as exceptions carrying HDF5's message; its own printing to stderr would
@@ -392,6 +403,24 @@ Hdf5FrameWriter::Hdf5FrameWriter(const std::string& path, const std::vector<Fiel
     write_text_attribute(check, dataset, where, "description", spec.description);
     write_image_attributes(check, dataset, where, spec);
   }
+  if (haptic_channel) {
+    // One row per 1 kHz tick, (N) or (N, C): chunks of a second of ticks.
+    Group group = open_parent_group(check, file, {"haptics", ""});
+    write_text_attribute(check, group.get(), "/haptics", "description",
+                         "the 1 kHz haptic loop, one row per tick (docs/haptics.md)");
+    for (const HapticColumn& column : haptic_columns()) {
+      const std::string where = std::string("/haptics/") + column.name;
+      std::vector<hsize_t> row_shape = {1};
+      if (column.components != 1) row_shape.push_back(hsize_t(column.components));
+      const bool f64 = column.type == HapticColumn::Type::f64;
+      impl.haptics.push_back(create_growing_dataset(check, group.get(), column.name, where,
+                                                    f64 ? H5T_IEEE_F64LE : H5T_STD_U8LE,
+                                                    f64 ? H5T_NATIVE_DOUBLE : H5T_NATIVE_UINT8, row_shape,
+                                                    hsize_t(kHapticRate_hz), deflate_level));
+      write_text_attribute(check, impl.haptics.back().dataset.get(), where, "unit", column.unit);
+      write_text_attribute(check, impl.haptics.back().dataset.get(), where, "description", column.description);
+    }
+  }
   check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush");
 }
 
@@ -399,7 +428,8 @@ Hdf5FrameWriter::Hdf5FrameWriter(const std::string& path, const std::vector<Fiel
 // stays .partial, so nobody mistakes it for a finished run.
 Hdf5FrameWriter::~Hdf5FrameWriter() = default;
 
-void Hdf5FrameWriter::append(double time_s, const std::vector<const void*>& field_data) {
+void Hdf5FrameWriter::append(double time_s, const std::vector<const void*>& field_data,
+                             const std::vector<HapticTick>& ticks) {
   Impl& impl = *impl_;
   if (impl.finished) throw std::logic_error("Hdf5FrameWriter::append after finish");
   if (field_data.size() != impl.fields.size())
@@ -408,11 +438,18 @@ void Hdf5FrameWriter::append(double time_s, const std::vector<const void*>& fiel
   for (std::size_t i = 0; i < field_data.size(); ++i)
     if (!field_data[i])
       throw std::invalid_argument("Hdf5FrameWriter::append: no data for " + impl.fields[i].where);
+  if (!ticks.empty() && impl.haptics.empty())
+    throw std::invalid_argument("Hdf5FrameWriter::append: haptic ticks for a file made without the haptic channel");
 
   const hsize_t frame = hsize_t(impl.frames);
   write_frame(impl.check, impl.time, frame, &time_s);
   for (std::size_t i = 0; i < field_data.size(); ++i)
     write_frame(impl.check, impl.fields[i], frame, field_data[i]);
+  for (std::size_t c = 0; c < impl.haptics.size(); ++c) {
+    const std::vector<std::uint8_t> bytes = haptic_column_bytes(haptic_columns()[c], ticks);
+    write_rows(impl.check, impl.haptics[c], hsize_t(impl.ticks), hsize_t(ticks.size()), bytes.data());
+  }
+  impl.ticks += std::int64_t(ticks.size());
   // The count is only raised once the frame is in every dataset, then all of it goes to disk:
   // a run killed from here on keeps this frame.
   ++impl.frames;
@@ -431,6 +468,8 @@ void Hdf5FrameWriter::finish(bool complete) {
   impl.check(impl.time.dataset.close(), "close dataset /time");
   for (GrowingDataset& field : impl.fields)
     impl.check(field.dataset.close(), "close dataset " + field.where);
+  for (GrowingDataset& column : impl.haptics)
+    impl.check(column.dataset.close(), "close dataset " + column.where);
   impl.check(impl.file.close(), "close the file");
 
   std::error_code error;

@@ -18,6 +18,7 @@
 #include <tuple>
 #include <utility>
 
+#include "core/haptics.h"
 #include "core/memory.h"
 #include "core/message_text.h"
 #include "core/particle_model.h"
@@ -369,6 +370,45 @@ void read_cuts(Reader& r, const toml::table& root, Scene& scene) {
   }
 }
 
+void read_haptics_table(Reader& r, const toml::table& root, Scene& scene) {
+  const toml::table* t = r.table(root, "haptics", "haptics");
+  if (!t) return;
+  const std::string k = "haptics";
+  r.only_known(*t, k,
+               {"trace", "repair_gap_ms", "surface_z_mm", "panel_origin_mm", "scale", "stiffness_N_per_m",
+                "damping_Ns_per_m", "device_damping_Ns_per_m", "max_force_N", "cut_button", "cut_spacing_mm"});
+  HapticParams h;
+  h.surface_z_mm = r.number(*t, k, "surface_z_mm", {1000 * kFalconMinZ_m, 1000 * kFalconMaxZ_m}).value_or(h.surface_z_mm);
+  h.origin_x_mm = scene.domain.width_mm / 2;
+  h.origin_y_mm = scene.domain.height_mm / 2;
+  if (const auto origin = read_vector(r, *t, k, "panel_origin_mm", {-1.0e4, 1.0e4}))
+    std::tie(h.origin_x_mm, h.origin_y_mm) = *origin;
+  h.scale = r.number(*t, k, "scale", {0.0, 100.0, true}).value_or(h.scale);
+  h.stiffness_N_per_m = r.number(*t, k, "stiffness_N_per_m", {0.0, 3000.0, true}).value_or(h.stiffness_N_per_m);
+  h.damping_Ns_per_m = r.number(*t, k, "damping_Ns_per_m", {0.0, 20.0}).value_or(h.damping_Ns_per_m);
+  h.device_damping_Ns_per_m =
+      r.number(*t, k, "device_damping_Ns_per_m", {0.0, 20.0, true}).value_or(h.device_damping_Ns_per_m);
+  h.max_force_N = r.number(*t, k, "max_force_N", {0.0, kFalconMaxForce_N, true}).value_or(h.max_force_N);
+  h.cut_buttons = std::uint8_t(r.integer(*t, k, "cut_button", 1, 15).value_or(h.cut_buttons));
+  h.cut_spacing_mm = r.number(*t, k, "cut_spacing_mm", {0.05, 100.0}).value_or(h.cut_spacing_mm);
+  // Checked here, where the keys have lines; a key left at its default points at [haptics].
+  const PassivityProblem problem = passivity_problem(h);
+  if (!problem.key.empty())
+    throw InputError(scene.place_of(scene.places.count(problem.key) ? problem.key : k), problem.key, problem.message);
+  scene.haptics = h;
+
+  const std::string trace = r.required(r.string(*t, k, "trace"), k, "trace");
+  const double repair_gap_ms = r.number(*t, k, "repair_gap_ms", {0.0, 1000.0}).value_or(0.0);
+  fs::path file = trace;
+  if (file.is_relative()) file = fs::path(r.path()).parent_path() / file;
+  std::error_code ec;
+  if (!fs::is_regular_file(file, ec))
+    throw InputError(scene.place_of(k + ".trace"), k + ".trace",
+                     "no trace file at '" + file.lexically_normal().string() + "'" +
+                         (fs::is_directory(file, ec) ? " (it is a folder)" : "") + " (relative paths are to the scenario file)");
+  scene.trace = load_trace(file.lexically_normal().string(), TraceOptions{repair_gap_ms / 1000.0});
+}
+
 void read_output_table(Reader& r, const toml::table& root, Scene& scene) {
   OutputSpec& out = scene.output;
   out.dir = "out/" + scene.name;
@@ -440,12 +480,13 @@ Scene parse_scenario(const std::string& text, const std::string& path) {
   scene.source_path = path;
   scene.source_text = text;
   Reader reader(scene, path);
-  reader.only_known(root, "", {"scene", "tissue", "spread", "particles", "blur", "cut", "output"});
+  reader.only_known(root, "", {"scene", "tissue", "spread", "particles", "blur", "haptics", "cut", "output"});
   read_scene_table(reader, root, scene);
   read_spread_table(reader, root, scene);
   read_particles_table(reader, root, scene);
   read_blur_table(reader, root, scene);
   read_cuts(reader, root, scene);
+  read_haptics_table(reader, root, scene);
   read_output_table(reader, root, scene);
   read_tissue(reader, root, scene);
   return scene;

@@ -28,4 +28,9 @@ Cut Scene::cut_at(double x_mm, double y_mm, double start_s) const {
   return Cut{x_mm, y_mm, start_s, size.radius_mm, size.growth_per_s, flow.rate_per_s, flow.bleed_s};
 }
 
+std::int64_t Scene::haptic_ticks_through_frame(std::int64_t k) const {
+  // (k + 1) · rate is exact; one division, correctly rounded, and floor: the same on every host.
+  return static_cast<std::int64_t>(std::floor(static_cast<double>((k + 1) * kHapticRate_hz) / frame_rate_hz)) + 1;
+}
+
 }  // namespace bleedsim

@@ -10,6 +10,7 @@
 #include "core/image.h"
 #include "core/input_error.h"
 #include "core/pixel_grid.h"
+#include "core/trace.h"
 
 namespace bleedsim {
 
@@ -77,6 +78,29 @@ struct BlurParams {
   double sigma_px = 2.0;   // the Gaussian's, in downsampled pixels
 };
 
+// The haptic loop's rate: tick n is at t = n / kHapticRate_hz, the Falcon's 1 kHz servo loop.
+constexpr int kHapticRate_hz = 1000;
+
+// The stylus and the tissue it touches (docs/haptics.md); present only when the scene calls for
+// it. Positions in the device frame are libnifalcon's (x right, y up, z towards the user).
+struct HapticParams {
+  // Where the tissue lies: the plane z = surface_z_mm of the device frame; the tip is in it below.
+  double surface_z_mm = 120.0;
+  // How device motion maps onto the panel: panel = origin + scale · (x, −y), in mm (the panel's y
+  // points down, the device's up). The origin is the panel point under device x = y = 0.
+  double origin_x_mm = 0.0;
+  double origin_y_mm = 0.0;
+  double scale = 1.0;
+  // The contact: a spring along the surface normal plus a damper, clamped to the device's maximum.
+  double stiffness_N_per_m = 500.0;
+  double damping_Ns_per_m = 0.5;
+  double device_damping_Ns_per_m = 1.5;  // the Falcon's own, for the passivity bound
+  double max_force_N = 8.0;
+  // Cutting: a cut every cut_spacing_mm of the tip's path while one of these buttons is held in contact.
+  std::uint8_t cut_buttons = 0x1;
+  double cut_spacing_mm = 1.0;
+};
+
 struct OutputSpec {
   std::string dir;                  // where outputs go; relative paths are to the working directory
   bool hdf5 = true;                 // frames.h5 in dir
@@ -99,6 +123,8 @@ struct Scene {
   std::optional<SpreadParams> spread;  // the effects the scene calls for
   std::optional<ParticleParams> particles;
   std::optional<BlurParams> blur;
+  std::optional<HapticParams> haptics;
+  std::optional<Trace> trace;          // replayed through the haptic loop, one sample per tick
   std::vector<Cut> cuts;               // cuts the scenario makes, in the order written (the
                                        // order overlapping stains combine in)
   OutputSpec output;
@@ -111,6 +137,9 @@ struct Scene {
   SourcePlace place_of(const std::string& key) const;
   // A cut at (x, y) starting at t with the scene's spread and particle defaults.
   Cut cut_at(double x_mm, double y_mm, double start_s) const;
+  // Haptic ticks (1 kHz, tick n at n ms) at or before the end of frame k: ticks 0 .. n_k − 1 have
+  // run when frame k is computed. From integer counts, so no clock drifts from another.
+  std::int64_t haptic_ticks_through_frame(std::int64_t k) const;
 };
 
 }  // namespace bleedsim

@@ -1,10 +1,12 @@
 #include "core/simulation.h"
 
+#include <chrono>
 #include <cmath>
 #include <stdexcept>
 
 #include "core/memory.h"
 #include "core/particle_model.h"
+#include "core/trace_replay.h"
 
 namespace bleedsim {
 namespace {
@@ -45,6 +47,18 @@ void check_consistent(const Scene& scene) {
     const SettingsProblem problem = particle_settings_problem(scene);
     if (!problem.key.empty()) throw std::invalid_argument(problem.key + ": " + problem.message);
   }
+  if (scene.haptics) {
+    const HapticParams& h = *scene.haptics;
+    if (!std::isfinite(h.surface_z_mm) || !std::isfinite(h.origin_x_mm) || !std::isfinite(h.origin_y_mm) ||
+        !(h.scale > 0) || !std::isfinite(h.scale) || !(h.stiffness_N_per_m > 0) || !(h.damping_Ns_per_m >= 0) ||
+        !(h.max_force_N > 0) || !(h.max_force_N <= kFalconMaxForce_N) || h.cut_buttons == 0 ||
+        !(h.cut_spacing_mm > 0))
+      throw std::invalid_argument("scene haptic parameters out of range (see docs/haptics.md)");
+    const PassivityProblem problem = passivity_problem(h);
+    if (!problem.key.empty()) throw std::invalid_argument(problem.key + ": " + problem.message);
+  }
+  if (scene.trace && (!scene.haptics || scene.trace->samples.empty()))
+    throw std::invalid_argument("a scene's trace needs [haptics] to replay it through, and samples");
   if (scene.blur) {
     const BlurParams& b = *scene.blur;
     if (!scene.particles) throw std::invalid_argument("a scene's blur needs particles to blur");
@@ -76,6 +90,7 @@ Simulation::Simulation(Scene scene, const BackendChoice& choice) : scene_(std::m
   check_fits(scene_, *backend_);
   state_.cuts = scene_.cuts;
   pipeline_ = std::make_unique<Pipeline>(scene_, state_, *backend_);
+  if (scene_.trace) haptics_.emplace(scene_);
 }
 
 Simulation::~Simulation() = default;
@@ -85,7 +100,23 @@ void Simulation::add_cut(const Cut& cut) {
   state_.cuts.push_back(cut);
 }
 
+void Simulation::replay_haptic_ticks() {
+  using Clock = std::chrono::steady_clock;
+  frame_ticks_.clear();
+  tick_seconds_.clear();
+  if (!haptics_) return;
+  const std::int64_t end = scene_.haptic_ticks_through_frame(state_.frames_done);
+  while (haptics_->ticks_done() < end) {
+    const Clock::time_point start = Clock::now();
+    HapticStep step = haptics_->tick(trace_sample_at_tick(*scene_.trace, haptics_->ticks_done()));
+    if (step.cut) state_.cuts.push_back(*step.cut);
+    tick_seconds_.push_back(std::chrono::duration<double>(Clock::now() - start).count());
+    frame_ticks_.push_back(step.record);
+  }
+}
+
 void Simulation::step() {
+  replay_haptic_ticks();
   pipeline_->run_frame(scene_, state_, *backend_);
   ++state_.frames_done;
 }

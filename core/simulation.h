@@ -5,10 +5,12 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/backend.h"
+#include "core/haptics.h"
 #include "core/pipeline.h"
 #include "core/scene.h"
 #include "core/state.h"
@@ -41,7 +43,8 @@ class Simulation {
   void add_cut(const Cut& cut);
   const std::vector<Cut>& cuts() const { return state_.cuts; }
 
-  // Computes the next frame.
+  // Computes the next frame. A scene with a trace first replays the haptic ticks up to the
+  // frame's end (Scene::haptic_ticks_through_frame), whose cuts the frame then shows.
   void step();
   std::int64_t frames_done() const { return state_.frames_done; }
   // Simulated time of the last computed frame; 0 before the first.
@@ -56,12 +59,22 @@ class Simulation {
 
   std::vector<StageReport> pipeline_report() const { return pipeline_->report(*backend_); }
 
+  // The haptic ticks replayed for the last frame (none without a trace), and the compute time of
+  // each, in seconds. A host that drives the stylus live runs its own HapticLoop instead.
+  const std::vector<HapticTick>& haptic_ticks() const { return frame_ticks_; }
+  const std::vector<double>& haptic_tick_seconds() const { return tick_seconds_; }
+
  private:
   Scene scene_;
   std::unique_ptr<Backend> backend_;  // declared before state_ and pipeline_: outlives their memory
   std::string backend_reason_;
   State state_;
   std::unique_ptr<Pipeline> pipeline_;
+  std::optional<HapticLoop> haptics_;  // the trace's replay
+  std::vector<HapticTick> frame_ticks_;
+  std::vector<double> tick_seconds_;
+
+  void replay_haptic_ticks();
 };
 
 }  // namespace bleedsim

@@ -3,9 +3,13 @@
 
     /usr/bin/python3 tests/check_hdf5_layout.py FILE [--frames N] [--fields a,b]
                                                 [--width W --height H] [--arrays c,d]
+                                                [--haptics TICKS [--max-force F]]
 
 --fields names image fields, (T, H, W[, C]); --arrays names fields that are not images:
 per-element arrays such as particle state or counters, (T, N[, C]), with no image attributes.
+--haptics expects the haptic channel of that many 1 kHz ticks under /haptics, and checks what any
+channel must hold: tick n at n / 1000 s; the force along the surface normal only, within
+[0, --max-force] N (default the Falcon's 8.9 N), zero out of contact; cutting only in contact.
 
 The layout is docs/output-format.md. Prints one line per failed check and exits 1 on any
 failure; otherwise prints a one-line summary and exits 0. Needs h5py and numpy (Debian's
@@ -141,6 +145,33 @@ def check_array(check, file, name, frames):
     check_frame_chunks_and_filters(check, node)
 
 
+HAPTIC_COLUMNS = {"time": (np.float64, ()), "tool_position": (np.float64, (3,)),
+                  "panel_position": (np.float64, (2,)), "buttons": (np.uint8, ()), "contact": (np.uint8, ()),
+                  "penetration": (np.float64, ()), "force": (np.float64, (3,)), "cutting": (np.uint8, ())}
+
+
+def check_haptics(check, file, ticks, max_force):
+    columns = {}
+    for name, (dtype, row) in HAPTIC_COLUMNS.items():
+        node = dataset(check, file, "/haptics/" + name)
+        if node is None:
+            return
+        if not check.expect(node.dtype == dtype and node.shape == (ticks,) + row,
+                            f"{node.name}: {node.dtype} {node.shape}, expected {np.dtype(dtype)} {(ticks,) + row}"):
+            return
+        check_text_attribute(check, node, "unit", nonempty=False)
+        check_text_attribute(check, node, "description")
+        columns[name] = node[()]
+    check.expect(np.array_equal(columns["time"], np.arange(ticks) / 1000.0), "/haptics/time: not n / 1000 s")
+    force, contact = columns["force"], columns["contact"].astype(bool)
+    check.expect(not force[:, :2].any(), "/haptics/force: has components across the surface normal")
+    check.expect(force[:, 2].min() >= 0 and force[:, 2].max() <= max_force,
+                 f"/haptics/force: {force[:, 2].min()} to {force[:, 2].max()} N, outside [0, {max_force}] N")
+    check.expect(not force[~contact].any() and not columns["penetration"][~contact].any(),
+                 "/haptics: force or penetration out of contact")
+    check.expect(not (columns["cutting"].astype(bool) & ~contact).any(), "/haptics/cutting: cuts out of contact")
+
+
 def check_root(check, file, frames):
     for name in PROVENANCE:
         check_text_attribute(check, file["/"], name)
@@ -166,6 +197,10 @@ def check_file(path, args):
             check_field(check, file, field, shape)
         for array in args.arrays:
             check_array(check, file, array, frames)
+        if args.haptics is not None:
+            check_haptics(check, file, args.haptics, args.max_force)
+        else:
+            check.expect("haptics" not in file, "/haptics: present, but no haptic channel was expected")
         check_root(check, file, frames)
     return check.failures, shape
 
@@ -181,6 +216,8 @@ def main():
     parser.add_argument("--arrays", default="",
                         help="comma-separated fields expected that are not images (per-element "
                              "arrays, (T, N[, C])), e.g. particles/position")
+    parser.add_argument("--haptics", type=int, help="expected haptic ticks under /haptics")
+    parser.add_argument("--max-force", type=float, default=8.9, help="the force cap, N (default 8.9)")
     args = parser.parse_args()
     args.fields = [field.strip("/") for field in args.fields.split(",") if field.strip()]
     args.arrays = [array.strip("/") for array in args.arrays.split(",") if array.strip()]
@@ -193,7 +230,8 @@ def main():
     frames, height, width = shape
     fields = ", ".join(args.fields) if args.fields else "no fields"
     arrays = f"; arrays {', '.join(args.arrays)}" if args.arrays else ""
-    print(f"OK {args.file}: {frames} frames of {width}x{height}, {fields}{arrays}")
+    haptics = f"; {args.haptics} haptic ticks" if args.haptics is not None else ""
+    print(f"OK {args.file}: {frames} frames of {width}x{height}, {fields}{arrays}{haptics}")
     return 0
 
 

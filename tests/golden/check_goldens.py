@@ -26,7 +26,12 @@ rounding:
   channel of the stained tissue times the Beer–Lambert transmission exp(−a_c · h),
   a = (4, 40, 45) per mm.
 
-The particles' checks (accounting, live slots, film, blur) live in golden_film.py beside this file.
+- for scenes with a [haptics] table (docs/haptics.md), the whole haptic channel replayed from the
+  trace file (samples, contact, penetration, force, cutting), the force rising on contact and
+  within the cap, and the cuts the strokes lay, which the checks above then use.
+
+The particles' checks (accounting, live slots, film, blur) live in golden_film.py beside this file,
+the haptics' in golden_haptics.py.
 
 Run: /usr/bin/python3 tests/golden/check_goldens.py [repo root] [--golden-dir DIR]
 (DIR defaults to <repo root>/golden; the scenarios are always <repo root>/scenarios/golden.)
@@ -40,8 +45,10 @@ import h5py
 import numpy as np
 
 from golden_film import check_blur, check_particles, pixel_centres
+from golden_haptics import check_haptics
 
-STAIN_TOLERANCE = 2e-6   # float32 arithmetic in the reference, float64 here
+STAIN_TOLERANCE = 2e-6   # float32 arithmetic in the reference, float64 here ...
+STAIN_TOLERANCE_PER_CUT = 3e-7   # ... and each overlapping cut's factor adds a few float32 roundings
 BYTE_TOLERANCE = 1       # the frame's bytes: one rounding step
 ABSORPTION_PER_MM = (4.0, 40.0, 45.0)  # the blend's Beer–Lambert coefficients (core/blend.h)
 OPTICAL_DEPTH_MAX = 32.0               # the transmission table's end: deeper reads exp(−32)
@@ -142,6 +149,9 @@ def check_scene(root, golden, name):
         if keys != wanted_keys:
             problems.append(f"key frames {keys}, expected {wanted_keys}")
         frames, times = f["frame"][:], f["time"][:]
+        if "haptics" in scenario:   # the stylus' cuts follow the scripted ones, as in the run
+            scenario["cut"] = scenario.get("cut", []) + check_haptics(root, scenario, f, expected_frames,
+                                                                    problems, notes)
         has_spread, has_particles = "spread" in scenario, "particles" in scenario
         has_blur = has_particles and "blur" in scenario   # the parser refuses [blur] without [particles]
         wanted_fields = ((["spread/stain"] if has_spread else []) +
@@ -163,7 +173,7 @@ def check_scene(root, golden, name):
         if abs(times[i] - t) > 1e-12:
             problems.append(f"key frame {k}: time {times[i]} s, expected {t} s")
         error = np.abs(stains[i] - expected_stain(scenario, t)).max() if has_spread else np.abs(stains[i]).max()
-        if error > STAIN_TOLERANCE:
+        if error > STAIN_TOLERANCE + STAIN_TOLERANCE_PER_CUT * len(scenario.get("cut", [])):
             problems.append(f"key frame {k}: stain differs from the report's formula by {error:.3g}")
     check_frames(keys, frames, stains, films, problems, notes,
                  "blur/thickness" if has_blur else "splat/thickness")

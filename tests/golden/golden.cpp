@@ -140,7 +140,7 @@ std::map<long, FieldBytes> read_key_frames(const std::string& dir) {
 }
 
 void write_key_frames(const std::string& dir, const Simulation& simulation,
-                      const std::map<long, FieldBytes>& frames) {
+                      const std::map<long, FieldBytes>& frames, const std::vector<HapticTick>& ticks) {
   std::vector<FieldLayout> specs;
   std::string names, numbers;
   for (const std::string& name : simulation.field_names()) {
@@ -149,11 +149,13 @@ void write_key_frames(const std::string& dir, const Simulation& simulation,
   }
   for (const auto& entry : frames) numbers += (numbers.empty() ? "" : " ") + std::to_string(entry.first);
   Hdf5FrameWriter writer(dir + "/keyframes.h5", specs,
-                         {{"key_frames", numbers}, {"fields", names}}, 9);
+                         {{"key_frames", numbers}, {"fields", names}}, 9, !ticks.empty());
   for (const auto& [frame, fields] : frames) {
     std::vector<const void*> data;
     for (const FieldLayout& spec : specs) data.push_back(fields.at(spec.name).data());
-    writer.append(simulation.scene().frame_time_s(frame), data);
+    // Every tick of the run goes in with the last key frame: the channel is not per key frame.
+    const bool last = frame == frames.rbegin()->first;
+    writer.append(simulation.scene().frame_time_s(frame), data, last ? ticks : std::vector<HapticTick>{});
   }
   writer.finish(true);
 }

@@ -1,6 +1,7 @@
 #pragma once
 // Golden scenes: golden/<scene>/hashes.txt pins every frame's per-field FNV-1a 64, and
-// golden/<scene>/keyframes.h5 keeps a few whole frames for diagnosing a mismatch.
+// golden/<scene>/keyframes.h5 keeps a few whole frames for diagnosing a mismatch (and the haptic
+// channel of a scene that replays a trace, for the independent check).
 // Scenario files live in scenarios/golden/<scene>.toml.
 #include <cstdint>
 #include <map>
@@ -27,8 +28,9 @@ void write_hashes(const std::string& dir, const std::string& scenario,
 // The frames kept whole: at the start, a third and two thirds in, and the last.
 std::vector<long> key_frame_numbers(long frame_count);
 std::map<long, FieldBytes> read_key_frames(const std::string& dir);
-// Writes keyframes.h5 with every field of the simulation at the given frames.
+// Writes keyframes.h5 with every field of the simulation at the given frames and, for a scene that
+// replays a trace, the whole run's haptic channel (/haptics, every tick).
 void write_key_frames(const std::string& dir, const Simulation& simulation,
-                      const std::map<long, FieldBytes>& frames);
+                      const std::map<long, FieldBytes>& frames, const std::vector<HapticTick>& ticks);
 
 }  // namespace bleedsim::golden

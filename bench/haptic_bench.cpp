@@ -1,0 +1,114 @@
+// The haptic loop against its 1 ms budget, and a trace-driven run against both budgets.
+//
+// haptic/tick: HapticLoop ticks (the replayed sample, contact, force, cut) over the default
+// synthesised stroke (bleedsim trace synth's defaults, 4,101 ticks); the counters give the mean
+// per tick over every stroke Google Benchmark runs.
+//
+// haptic/run/<backend>: scenarios/falcon-stroke.toml from its first frame to its last (a recorded
+// stroke cutting the 640 × 480 panel; spread, particles, blur), once per repetition, measuring
+// every haptic tick and every frame (its ticks, its stages and the frame's copy to the host) with
+// the wall clock, as `bleedsim run` does. Counters: their p50, p99 and max, and p99 as a share of
+// the 1 ms and 33.3 ms budgets. Run from the repository root (or with the scenario's folder at
+// BLEEDSIM_SOURCE_DIR, as built).
+#include <chrono>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "bench/bench_util.h"
+#include "core/haptics.h"
+#include "core/scenario.h"
+#include "core/simulation.h"
+#include "core/timing_summary.h"
+#include "core/trace_replay.h"
+#include "core/trace_synth.h"
+
+namespace bleedsim {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+void time_tick(benchmark::State& state) {
+  const Trace trace = parse_trace(synthesize_trace(SynthSpec{}), "synthesised");
+  const std::int64_t ticks = std::int64_t(trace.samples.size());
+  Scene scene;  // the loop needs the panel and the contact: a 32 × 24 mm panel, default stylus
+  scene.domain = Domain{640, 480, 32.0, 24.0};
+  scene.spread = SpreadParams{};
+  HapticParams stylus;
+  stylus.origin_x_mm = 16.0;
+  stylus.origin_y_mm = 12.0;
+  scene.haptics = stylus;
+  // An iteration is the whole stroke, a fresh loop each time; the counters are per tick.
+  double total_s = 0;
+  for (auto _ : state) {
+    HapticLoop loop(scene);
+    const Clock::time_point start = Clock::now();
+    for (std::int64_t n = 0; n < ticks; ++n) benchmark::DoNotOptimize(loop.tick(trace_sample_at_tick(trace, n)));
+    const double elapsed_s = seconds_since(start);
+    state.SetIterationTime(elapsed_s);
+    total_s += elapsed_s;
+  }
+  const double per_tick_s = total_s / double(state.iterations()) / double(ticks);
+  state.counters["tick_us"] = 1e6 * per_tick_s;
+  state.counters["haptic_budget_%"] = 100.0 * per_tick_s / kHapticBudget_s;
+}
+
+std::string falcon_scenario() {
+  const std::string here = "scenarios/falcon-stroke.toml";
+  return std::filesystem::exists(here) ? here : std::string(BLEEDSIM_SOURCE_DIR) + "/" + here;
+}
+
+void time_run(benchmark::State& state, BackendKind kind) {
+  if (!backend_or_skip(kind, state)) return;
+  const Scene scene = load_scenario(falcon_scenario());
+  std::vector<double> frames, ticks;
+  for (auto _ : state) {
+    Simulation sim(scene, BackendChoice{kind == BackendKind::cuda ? BackendChoice::Want::cuda : BackendChoice::Want::cpu, 0});
+    std::vector<std::uint8_t> rgba(sim.field("frame").field->bytes());
+    const Clock::time_point run_start = Clock::now();
+    for (int k = 0; k < scene.frame_count(); ++k) {
+      const Clock::time_point start = Clock::now();
+      sim.step();
+      sim.copy_field("frame", rgba.data());  // the host has the frame: the GPU's work is done
+      frames.push_back(seconds_since(start));
+      ticks.insert(ticks.end(), sim.haptic_tick_seconds().begin(), sim.haptic_tick_seconds().end());
+    }
+    state.SetIterationTime(seconds_since(run_start));
+    state.SetLabel(sim.backend().device_name());
+  }
+  const Percentiles f = percentiles_of(frames), t = percentiles_of(ticks);
+  state.counters["frame_p50_ms"] = 1e3 * f.p50;
+  state.counters["frame_p99_ms"] = 1e3 * f.p99;
+  state.counters["frame_max_ms"] = 1e3 * f.max;
+  state.counters["frame_p99_budget_%"] = 100.0 * f.p99 / kFrameBudget_s;
+  state.counters["tick_p50_us"] = 1e6 * t.p50;
+  state.counters["tick_p99_us"] = 1e6 * t.p99;
+  state.counters["tick_max_us"] = 1e6 * t.max;
+  state.counters["tick_p99_budget_%"] = 100.0 * t.p99 / kHapticBudget_s;
+}
+
+}  // namespace
+
+void register_haptic_benchmarks() {
+  benchmark::RegisterBenchmark("haptic/tick", time_tick)
+      ->UseManualTime()
+      ->Unit(benchmark::kMillisecond)
+      ->Repetitions(5)
+      ->ReportAggregatesOnly(true)
+      ->DisplayAggregatesOnly(true);
+  for (const BackendKind kind : {BackendKind::cpu, BackendKind::cuda})
+    benchmark::RegisterBenchmark((std::string("haptic/run/") + to_string(kind)).c_str(),
+                                 [kind](benchmark::State& state) { time_run(state, kind); })
+        ->UseManualTime()
+        ->Unit(benchmark::kMillisecond)
+        ->Iterations(1)
+        ->Repetitions(3)
+        ->ReportAggregatesOnly(true)
+        ->DisplayAggregatesOnly(true);
+}
+
+}  // namespace bleedsim

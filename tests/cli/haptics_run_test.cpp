@@ -1,0 +1,99 @@
+// bleedsim run on scenarios that replay a Falcon trace, as a user runs them: the haptic channel in
+// the HDF5 file, the budgets in the summary, and every kind of bad trace refused with its line and
+// exit 2 before anything is written.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+#include "tests/cli/cli_harness.h"
+
+namespace bleedsim::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(RunHaptics, WritesTheHapticChannelAndReportsTheBudgets) {
+  // The example stroke (scenarios/traces/single-stroke.csv) over a small panel for 4.2 s.
+  const fs::path folder = scratch_folder();
+  const std::string trace = source_dir() + "/scenarios/traces/single-stroke.csv";
+  write_text(folder / "stroke.toml",
+             "[scene]\nwidth_px = 64\nheight_px = 48\nwidth_mm = 32.0\nheight_mm = 24.0\nduration_s = 4.2\n"
+             "[spread]\nradius_mm = 2.0\n[particles]\ncapacity = 4096\nrate_per_s = 50.0\nbleed_s = 1.0\n"
+             "[haptics]\ntrace = \"" + trace + "\"\ncut_spacing_mm = 1.5\n"
+             "[output]\ndir = \"" + (folder / "out").string() + "\"\n");
+  const CliResult result = run_cli("run '" + (folder / "stroke.toml").string() + "' --backend cpu");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("replaying " + trace + ": 4631 samples over 4.630 s"), std::string::npos)
+      << result.output;
+  EXPECT_NE(result.output.find("of 126 frames: p99 is"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("of 4201 ticks: p99 is"), std::string::npos) << result.output;
+  // The stroke: 1.0 to 3.83 s at 10 mm/s along 25.3 mm, a cut at once and every 1.5 mm after.
+  EXPECT_NE(result.output.find("of the 1 ms budget; 17 cuts made"), std::string::npos) << result.output;
+  // The file as h5py sees it: /haptics, one row per tick (4.2 s at 1 kHz, ticks 0..4200), its force
+  // along the normal only, within [0, 8] N, zero out of contact, cutting only in contact.
+  const CliResult check = run_shell("'" + python() + "' '" + source_dir() + "/tests/check_hdf5_layout.py' '" +
+                                    (folder / "out" / "frames.h5").string() +
+                                    "' --frames 126 --fields spread/stain,splat/thickness --arrays particles/accounting"
+                                    " --haptics 4201 --max-force 8");
+  EXPECT_EQ(check.exit_code, 0) << check.output;
+}
+
+// A scenario whose [haptics] trace is `trace`, in a scratch folder; returns the scenario's path.
+fs::path scenario_with_trace(const fs::path& folder, const std::string& trace) {
+  write_text(folder / "t.csv", trace);
+  write_text(folder / "s.toml",
+             "[scene]\nwidth_px = 32\nheight_px = 24\nwidth_mm = 32.0\nheight_mm = 24.0\nduration_s = 0.1\n"
+             "[spread]\n[haptics]\ntrace = \"t.csv\"\n[output]\ndir = \"" + (folder / "out").string() + "\"\n");
+  return folder / "s.toml";
+}
+
+struct BadTrace {
+  const char* name;
+  std::string text;
+  std::string message;  // what the error must say, from the file name on
+};
+
+const std::string kMetadata = "# device: Novint Falcon\n# frame: libnifalcon\n# rate_hz: 1000\n";
+const std::string kHeader = "t_s,x_m,y_m,z_m,buttons\n";
+const std::string kTwoSamples = "0.000,0.0,0.0,0.1200,0\n0.001,0.0,0.0,0.1190,1\n";
+
+class RunBadTrace : public ::testing::TestWithParam<BadTrace> {};
+
+TEST_P(RunBadTrace, ExitsTwoNamingTheLineAndWritesNothing) {
+  const BadTrace& bad = GetParam();
+  const fs::path folder = scratch_folder();
+  const CliResult result = run_cli("run '" + scenario_with_trace(folder, bad.text).string() + "' --backend cpu");
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  EXPECT_NE(result.output.find("bleedsim: error: " + (folder / "t.csv").string() + bad.message), std::string::npos)
+      << result.output;
+  EXPECT_FALSE(fs::exists(folder / "out")) << "a bad trace must leave no output";
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Traces, RunBadTrace,
+    ::testing::Values(
+        BadTrace{"Empty", "", ": the file is empty"},
+        BadTrace{"WrongHeader", kMetadata + "time,x,y,z,buttons\n" + kTwoSamples, ":4:6: header: column 2 is 'x'"},
+        BadTrace{"WrongUnits", kMetadata + "t_s,x_mm,y_mm,z_mm,buttons\n" + kTwoSamples,
+                 ":4:5: header: column 2 is 'x_mm': positions are in metres (x_m)"},
+        BadTrace{"TimeNotIncreasing", kMetadata + kHeader + kTwoSamples + "0.001,0.0,0.0,0.1190,1\n",
+                 ":7:1: t_s: time must be strictly increasing"},
+        BadTrace{"NaN", kMetadata + kHeader + kTwoSamples + "0.002,nan,0.0,0.1190,1\n",
+                 ":7:7: x_m: must be a finite number (got nan)"},
+        BadTrace{"OutsideTheWorkspace", kMetadata + kHeader + kTwoSamples + "0.002,0.0,0.0,119.0,1\n",
+                 ":7:15: z_m: 119 m is outside the Falcon's workspace"}),
+    [](const ::testing::TestParamInfo<BadTrace>& info) { return std::string(info.param.name); });
+
+TEST(RunHaptics, AMissingTraceIsPlacedAtTheScenarioKey) {
+  const fs::path folder = scratch_folder();
+  const fs::path scenario = scenario_with_trace(folder, "");
+  fs::remove(folder / "t.csv");
+  const CliResult result = run_cli("run '" + scenario.string() + "' --backend cpu");
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  EXPECT_NE(result.output.find(scenario.string() + ":9:9: haptics.trace: no trace file at"), std::string::npos)
+      << result.output;
+}
+
+}  // namespace
+}  // namespace bleedsim::test
