@@ -25,6 +25,18 @@ struct RunOptions {
 };
 
 int run_command(const RunOptions& options);
+
+struct StudyOptions {
+  std::string scenario;
+  std::vector<std::string> knobs;      // "substeps=10,20,40"; none: every knob the scene has
+  std::string backend = "auto";        // auto (CUDA and CPU where a device is, else CPU), cpu, cuda, both
+  std::optional<double> duration_s;    // a shorter run than the scene's
+  std::optional<std::string> out_dir;  // default out/study/<scene>
+  bool plots = true;
+  bool quiet = false;
+};
+
+int study_command(const StudyOptions& options);
 int validate_command(const std::string& scenario);
 int hash_command(const std::string& scenario, const BackendChoice& backend);
 int info_command();

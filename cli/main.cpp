@@ -11,6 +11,7 @@
 #include "cli/commands.h"
 #include "core/build_info.h"
 #include "core/input_error.h"
+#include "core/study.h"
 
 namespace {
 
@@ -87,6 +88,27 @@ int main(int argc, char** argv) {
   hash_cmd->add_option("scenario", hash_path, "scenario file (.toml)")->required();
   add_backend_options(*hash_cmd, hash_backend);
 
+  StudyOptions study;
+  std::string knob_names;
+  for (const bleedsim::Knob& knob : bleedsim::knobs()) knob_names += std::string(knob_names.empty() ? "" : ", ") + knob.name;
+  CLI::App* study_cmd = app.add_subcommand(
+      "study", "what accuracy costs in time: the scene at each setting of its accuracy knobs, timed and "
+               "compared with the finest (docs/accuracy.md)");
+  study_cmd->add_option("scenario", study.scenario, "scenario file (.toml)")->required();
+  study_cmd->add_option("-k,--knob", study.knobs,
+                        "a knob and the values to try, as name=v1,v2,...; repeat for more (default: every knob "
+                        "the scene has, over its default range). Knobs: " + knob_names);
+  study_cmd->add_option("-b,--backend", study.backend,
+                        "auto (CUDA and the CPU where a device is, else the CPU), cpu, cuda or both")
+      ->check(CLI::IsMember({"auto", "cpu", "cuda", "both"}))
+      ->capture_default_str();
+  study_cmd->add_option("--duration-s", study.duration_s, "run each setting this long instead of the scene's duration")
+      ->check(CLI::Range(0.001, 86400.0));
+  study_cmd->add_option("-o,--out", study.out_dir, "output folder (default out/study/<scene>)");
+  bool no_plots = false;
+  study_cmd->add_flag("--no-plots", no_plots, "write study.csv and study.h5 only (plot later with scripts/plot-study)");
+  study_cmd->add_flag("-q,--quiet", study.quiet, "print only the files written and errors");
+
   CLI::App* info_cmd = app.add_subcommand("info", "version, build flags and available backends");
 
   CLI::App* trace_cmd = app.add_subcommand("trace", "recorded Falcon stylus traces (docs/traces.md)");
@@ -146,6 +168,10 @@ int main(int argc, char** argv) {
       return run_command(run);
     }
     if (*validate_cmd) return validate_command(validate_path);
+    if (*study_cmd) {
+      study.plots = !no_plots;
+      return study_command(study);
+    }
     if (*hash_cmd) return hash_command(hash_path, hash_backend.choice());
     if (*info_cmd) return info_command();
     if (*trace_info_cmd) return trace_info_command(trace_path, repair_gap_ms);
