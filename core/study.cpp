@@ -51,7 +51,13 @@ std::vector<T> copy_as(const Simulation& sim, const char* name) {
 }  // namespace
 
 Study::Study(const Scene& scene, const StudySpec& spec) : base_(scene), spec_(spec) {
-  if (spec_.duration_s) base_.duration_s = *spec_.duration_s;
+  if (spec_.duration_s) {
+    base_.duration_s = *spec_.duration_s;
+    if (base_.frame_count() < 1)
+      throw InputError(no_place(), "--duration-s",
+                       format_number(*spec_.duration_s) + " s is less than one frame at " +
+                           format_number(base_.frame_rate_hz) + " Hz");
+  }
   if (spec_.sweeps.empty())
     for (const Knob& knob : knobs())
       if (knob.applies(base_)) spec_.sweeps.push_back({&knob, knob.default_sweep(base_)});

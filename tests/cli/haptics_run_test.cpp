@@ -40,6 +40,21 @@ TEST(RunHaptics, WritesTheHapticChannelAndReportsTheBudgets) {
   EXPECT_EQ(check.exit_code, 0) << check.output;
 }
 
+TEST(RunHaptics, ValidateReplaysTheStylusAlone) {
+  // The example stroke over the example scene: 6 s of ticks, the contact and the cuts it makes.
+  const CliResult result = run_cli("validate '" + source_dir() + "/scenarios/falcon-stroke.toml'");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("haptics    surface z = 120 mm; k 500 N/m, b 0.5 N·s/m, cap 8 N; passive: "
+                               "k·T/2 + |b| = 0.75 < 1.5 N·s/m"),
+            std::string::npos)
+      << result.output;
+  // 6001 ticks (0..6000 ms); the stroke is in contact from 1.004 s until the lift; 25.3 mm at
+  // a cut per mm and one at once: 26 cuts.
+  EXPECT_NE(result.output.find("stylus     6001 ticks: in contact 2891, cutting 2826; 26 cuts; peak force 1.05 N"),
+            std::string::npos)
+      << result.output;
+}
+
 // A scenario whose [haptics] trace is `trace`, in a scratch folder; returns the scenario's path.
 fs::path scenario_with_trace(const fs::path& folder, const std::string& trace) {
   write_text(folder / "t.csv", trace);

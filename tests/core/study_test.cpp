@@ -121,6 +121,13 @@ TEST(StudyBadInput, KnobValuesAreCheckedBeforeAnythingRuns) {
   EXPECT_NE(refusal("blur_downsample", {3}).find("--knob blur_downsample: values must be 1, 2 or 4 (got 3)"),
             std::string::npos);
   EXPECT_EQ(find_knob("nothing"), nullptr);
+  try {
+    Study(scene, spec_of({{find_knob("substeps"), {40}}}, 0.01));
+    FAIL() << "a study of no frames was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("--duration-s: 0.01 s is less than one frame at 30 Hz"), std::string::npos)
+        << e.what();
+  }
 }
 
 }  // namespace
