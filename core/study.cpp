@@ -113,20 +113,13 @@ Scene Study::with(const StudySetting& setting) const {
   const bool reference = setting.role == "reference" || setting.role == "reference_check";
   for (const KnobSweep& sweep : spec_.sweeps) {
     const Knob& knob = *sweep.knob;
-    double value;
-    if (reference) value = finest(knob, sweep.values, knob.base(base_));
-    else if (setting.knob == knob.name) value = setting.value;
-    else continue;
-    if (setting.role == "reference_check" && std::string(knob.name) == (s.particles ? "substeps" : "resolution"))
-      value *= 2;
-    knob.apply(s, value);
+    if (reference) knob.apply(s, finest(knob, sweep.values, knob.base(base_)));
+    else if (setting.knob == knob.name) knob.apply(s, setting.value);
   }
-  // A knob the study does not sweep is still halved for the check.
+  // Both knobs refine what the scene has as it is now: more sub-steps never soften the contact.
   if (setting.role == "reference_check") {
-    const bool swept = std::any_of(spec_.sweeps.begin(), spec_.sweeps.end(), [&](const KnobSweep& w) {
-      return std::string(w.knob->name) == (s.particles ? "substeps" : "resolution");
-    });
-    if (!swept) find_knob(s.particles ? "substeps" : "resolution")->apply(s, s.particles ? 2.0 * s.particles->substeps : 2.0);
+    if (s.particles) find_knob("substeps")->apply(s, 2.0 * s.particles->substeps);
+    else find_knob("resolution")->apply(s, 2.0);
   }
   return s;
 }

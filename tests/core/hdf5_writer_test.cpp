@@ -1,12 +1,11 @@
-// The HDF5 frame writer and the PNG writer, read back through the HDF5 C API and stb_image: the
-// layout docs/output-format.md promises, the bytes written, determinism and partial files.
+// The HDF5 frame writer, read back through the HDF5 C API: the layout docs/output-format.md
+// promises, the bytes written, determinism and partial files.
 #include "core/hdf5_writer.h"
-#include "core/png_writer.h"
+#include "tests/core/hdf5_read_back.h"
 #include "tests/test_paths.h"
 
 #include <gtest/gtest.h>
 #include <hdf5.h>
-#include <stb/stb_image.h>
 #include <sys/wait.h>
 
 #include <algorithm>
@@ -24,6 +23,7 @@ namespace bleedsim {
 namespace {
 
 namespace fs = std::filesystem;
+using namespace test;
 
 // --- What the tests write ------------------------------------------------------------------------
 
@@ -126,149 +126,13 @@ void write_array_sample(const fs::path& path, int deflate_level,
   writer.finish(true);
 }
 
-// A folder of its own for each test, so tests run in parallel (ctest -j) never meet.
-fs::path test_folder() {
-  const testing::TestInfo* test = testing::UnitTest::GetInstance()->current_test_info();
-  const fs::path folder = fs::path(test::binary_dir()) / "test_output" / "hdf5_writer" /
-                          (std::string(test->test_suite_name()) + "." + test->name());
-  fs::remove_all(folder);
-  fs::create_directories(folder);
-  return folder;
-}
+fs::path test_folder() { return test_output_folder("hdf5_writer"); }
 
 fs::path partial(const fs::path& path) { return path.string() + ".partial"; }
 
 std::vector<char> file_bytes(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-// --- Reading back ------------------------------------------------------------------------------
-
-template <herr_t (*Close)(hid_t)>
-class Owned {
- public:
-  explicit Owned(hid_t id) : id_(id) {}
-  Owned(const Owned&) = delete;
-  Owned& operator=(const Owned&) = delete;
-  ~Owned() {
-    if (id_ >= 0) Close(id_);
-  }
-  operator hid_t() const { return id_; }
-
- private:
-  hid_t id_;
-};
-
-// The handles throw rather than assert, so that helpers returning values can use them; gtest
-// reports the exception as a failure of the test.
-hid_t checked(hid_t id, const std::string& what) {
-  if (id < 0) throw std::runtime_error("HDF5 read-back failed: " + what);
-  return id;
-}
-void checked_status(herr_t status, const std::string& what) {
-  if (status < 0) throw std::runtime_error("HDF5 read-back failed: " + what);
-}
-
-struct File : Owned<H5Fclose> {
-  explicit File(const fs::path& path)
-      : Owned(
-            checked(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), "open " + path.string())) {}
-};
-struct Dataset : Owned<H5Dclose> {
-  Dataset(hid_t file, const std::string& path)
-      : Owned(checked(H5Dopen2(file, path.c_str(), H5P_DEFAULT), "open " + path)) {}
-};
-using Space = Owned<H5Sclose>;
-using Type = Owned<H5Tclose>;
-using Plist = Owned<H5Pclose>;
-using Attribute = Owned<H5Aclose>;
-
-struct Extent {
-  std::vector<hsize_t> dims;
-  std::vector<hsize_t> max_dims;
-};
-
-Extent extent_of(hid_t dataset) {
-  Space space(checked(H5Dget_space(dataset), "dataspace"));
-  const std::size_t rank = std::size_t(H5Sget_simple_extent_ndims(space));
-  Extent extent{std::vector<hsize_t>(rank), std::vector<hsize_t>(rank)};
-  checked_status(H5Sget_simple_extent_dims(space, extent.dims.data(), extent.max_dims.data()),
-                 "dims");
-  return extent;
-}
-
-std::vector<hsize_t> dims_of(hid_t dataset) { return extent_of(dataset).dims; }
-
-std::vector<hsize_t> chunk_of(hid_t dataset) {
-  Plist dcpl(checked(H5Dget_create_plist(dataset), "dcpl"));
-  std::vector<hsize_t> chunk(8);
-  const int rank = H5Pget_chunk(dcpl, int(chunk.size()), chunk.data());
-  checked_status(rank, "chunk");
-  chunk.resize(std::size_t(rank));
-  return chunk;
-}
-
-std::vector<H5Z_filter_t> filters_of(hid_t dataset) {
-  Plist dcpl(checked(H5Dget_create_plist(dataset), "dcpl"));
-  std::vector<H5Z_filter_t> filters;
-  for (int i = 0; i < H5Pget_nfilters(dcpl); ++i) {
-    unsigned flags = 0;
-    size_t values = 0;
-    filters.push_back(
-        H5Pget_filter2(dcpl, unsigned(i), &flags, &values, nullptr, 0, nullptr, nullptr));
-  }
-  return filters;
-}
-
-struct Text {
-  std::string value;
-  bool variable_length = false;
-  H5T_cset_t cset = H5T_CSET_ERROR;
-  H5T_str_t padding = H5T_STR_ERROR;
-};
-
-Text text_attribute(hid_t object, const char* name) {
-  Attribute attribute(
-      checked(H5Aopen(object, name, H5P_DEFAULT), std::string("attribute ") + name));
-  Type type(checked(H5Aget_type(attribute), "attribute type"));
-  if (H5Tget_class(type) != H5T_STRING)
-    throw std::runtime_error(std::string("attribute ") + name + " is not a string");
-  Text text;
-  text.variable_length = H5Tis_variable_str(type) > 0;
-  text.cset = H5Tget_cset(type);
-  text.padding = H5Tget_strpad(type);
-  if (text.variable_length) {
-    char* value = nullptr;
-    checked_status(H5Aread(attribute, type, &value), "read string");
-    text.value = value ? value : "";
-    H5free_memory(value);
-  } else {
-    std::vector<char> value(H5Tget_size(type) + 1, '\0');
-    checked_status(H5Aread(attribute, type, value.data()), "read string");
-    text.value = value.data();
-  }
-  return text;
-}
-
-template <class T>
-T scalar_attribute(hid_t object, const char* name, hid_t memory_type) {
-  Attribute attribute(
-      checked(H5Aopen(object, name, H5P_DEFAULT), std::string("attribute ") + name));
-  T value{};
-  checked_status(H5Aread(attribute, memory_type, &value), std::string("read ") + name);
-  return value;
-}
-
-// All of one dataset as stored, frames one after another.
-template <class T>
-std::vector<T> read_all(hid_t dataset, hid_t memory_type) {
-  std::size_t count = 1;
-  for (const hsize_t extent : dims_of(dataset)) count *= std::size_t(extent);
-  std::vector<T> values(count);
-  checked_status(H5Dread(dataset, memory_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
-                 "read data");
-  return values;
 }
 
 template <class T>
@@ -637,69 +501,6 @@ TEST(Hdf5FrameWriter, WrongPointerCountIsInvalidArgument) {
   EXPECT_EQ(writer.frames_written(), 0);
 }
 
-// --- The haptic channel -------------------------------------------------------------------------
-
-// Tick n of the sample: every column a different function of n.
-HapticTick sample_tick(int n) {
-  HapticTick t;
-  t.tick = n;
-  t.t_s = n / 1000.0;
-  t.tool_m = Eigen::Vector3d(0.001 * n, -0.002, 0.12 - 0.0001 * n);
-  t.panel_mm = Eigen::Vector2d(10.0 + n, 5.0);
-  t.buttons = std::uint8_t(n % 16);
-  t.contact = n % 2 == 1;
-  t.penetration_m = t.contact ? 0.0001 * n : 0.0;
-  t.force_N = Eigen::Vector3d(0, 0, 0.05 * n);
-  t.cutting = n == 3;
-  return t;
-}
-
-TEST(Hdf5FrameWriter, TheHapticChannelGrowsByEachFramesTicks) {
-  const fs::path path = test_folder() / "frames.h5";
-  {
-    Hdf5FrameWriter writer(path.string(), sample_fields(), kAttributes, 4, true);
-    int n = 0;
-    for (int frame = 0; frame < kFrames; ++frame) {
-      std::vector<HapticTick> ticks;
-      for (int i = 0; i < 2 + frame; ++i) ticks.push_back(sample_tick(n++));  // 2, 3, 4 ticks
-      const std::vector<std::uint8_t> rgba = frame_pattern(frame);
-      const std::vector<float> stain = stain_values(frame);
-      writer.append(frame_time(frame), {rgba.data(), stain.data()}, ticks);
-    }
-    writer.finish(true);
-  }
-  File file(path);
-  const Extent force = extent_of(Dataset(file, "/haptics/force"));
-  EXPECT_EQ(force.dims, (std::vector<hsize_t>{9, 3}));
-  EXPECT_EQ(extent_of(Dataset(file, "/haptics/time")).dims, std::vector<hsize_t>{9});
-  const std::vector<double> time = read_all<double>(Dataset(file, "/haptics/time"), H5T_NATIVE_DOUBLE);
-  const std::vector<double> forces = read_all<double>(Dataset(file, "/haptics/force"), H5T_NATIVE_DOUBLE);
-  const std::vector<double> panel = read_all<double>(Dataset(file, "/haptics/panel_position"), H5T_NATIVE_DOUBLE);
-  const std::vector<std::uint8_t> contact = read_all<std::uint8_t>(Dataset(file, "/haptics/contact"), H5T_NATIVE_UINT8);
-  const std::vector<std::uint8_t> buttons = read_all<std::uint8_t>(Dataset(file, "/haptics/buttons"), H5T_NATIVE_UINT8);
-  for (int n = 0; n < 9; ++n) {
-    SCOPED_TRACE("tick " + std::to_string(n));
-    const HapticTick t = sample_tick(n);
-    EXPECT_EQ(time[std::size_t(n)], t.t_s);
-    EXPECT_EQ(forces[std::size_t(3 * n + 2)], t.force_N.z());
-    EXPECT_EQ(panel[std::size_t(2 * n)], t.panel_mm.x());
-    EXPECT_EQ(contact[std::size_t(n)], t.contact ? 1 : 0);
-    EXPECT_EQ(buttons[std::size_t(n)], t.buttons);
-  }
-}
-
-TEST(Hdf5FrameWriter, WithoutTheHapticChannelTicksAreRefused) {
-  const fs::path path = test_folder() / "frames.h5";
-  Hdf5FrameWriter writer(path.string(), sample_fields(), kAttributes, 4);
-  const std::vector<std::uint8_t> rgba = frame_pattern(0);
-  const std::vector<float> stain = stain_values(0);
-  EXPECT_THROW(writer.append(frame_time(0), {rgba.data(), stain.data()}, {sample_tick(0)}), std::invalid_argument);
-  writer.append(frame_time(0), {rgba.data(), stain.data()});
-  writer.finish(true);
-  File file(path);
-  EXPECT_LE(H5Lexists(file, "haptics", H5P_DEFAULT), 0);
-}
-
 TEST(Hdf5FrameWriter, AppendOrFinishAfterFinishIsLogicError) {
   const fs::path path = test_folder() / "frames.h5";
   Hdf5FrameWriter writer(path.string(), sample_fields(), kAttributes, 4);
@@ -790,40 +591,6 @@ TEST(Hdf5LayoutChecker, AcceptsNonImageArraysAndRejectsAnImageNamedAsOne) {
   EXPECT_EQ(run_layout_checker(folder / "arrays.h5", " --arrays particles/position,spread/stain"),
             1);
   EXPECT_EQ(run_layout_checker(folder / "arrays.h5", " --arrays particles/missing"), 1);
-}
-
-// --- PNG ---------------------------------------------------------------------------------------
-
-TEST(WritePngRgba, ReadsBackExactlyAndLeavesNoTemporary) {
-  const fs::path folder = test_folder();
-  const fs::path path = folder / "frame_000000.png";
-  const std::vector<std::uint8_t> rgba = frame_pattern(2);
-  write_png_rgba(path.string(), kWidth, kHeight, rgba.data());
-
-  int width = 0, height = 0, channels = 0;
-  stbi_uc* pixels = stbi_load(path.c_str(), &width, &height, &channels, 4);
-  ASSERT_NE(pixels, nullptr) << stbi_failure_reason();
-  const std::vector<std::uint8_t> read(pixels, pixels + std::size_t(kPixels) * 4);
-  stbi_image_free(pixels);
-  EXPECT_EQ(width, kWidth);
-  EXPECT_EQ(height, kHeight);
-  EXPECT_EQ(channels, 4);
-  EXPECT_EQ(read, rgba);
-  EXPECT_EQ(std::distance(fs::directory_iterator(folder), fs::directory_iterator()), 1)
-      << "something beside the PNG was left in " << folder;
-}
-
-TEST(WritePngRgba, MissingFolderThrowsAndLeavesNothing) {
-  const fs::path folder = test_folder();
-  const fs::path path = folder / "png" / "frame_000000.png";
-  const std::vector<std::uint8_t> rgba = frame_pattern(0);
-  try {
-    write_png_rgba(path.string(), kWidth, kHeight, rgba.data());
-    FAIL() << "no exception";
-  } catch (const std::runtime_error& error) {
-    EXPECT_NE(message_of(error).find(path.string()), std::string::npos) << error.what();
-  }
-  EXPECT_TRUE(fs::is_empty(folder));
 }
 
 }  // namespace
