@@ -63,10 +63,13 @@ std::vector<BackendKind> backends_for(const std::string& which) {
   return cuda ? std::vector<BackendKind>{BackendKind::cuda, BackendKind::cpu} : std::vector<BackendKind>{BackendKind::cpu};
 }
 
-// scripts/plot-study from the working folder or the source tree, with Debian's Python.
-fs::path plot_script() {
+// scripts/plot-study from the working folder or the source tree, with Debian's Python (or the one
+// BLEEDSIM_PYTHON names, as the tests do).
+std::string plot_command(const fs::path& folder) {
   const fs::path here = "scripts/plot-study";
-  return fs::exists(here) ? here : fs::path(BLEEDSIM_SOURCE_DIR) / here;
+  const fs::path script = fs::exists(here) ? here : fs::path(BLEEDSIM_SOURCE_DIR) / here;
+  const char* python = std::getenv("BLEEDSIM_PYTHON");
+  return "'" + std::string(python ? python : "/usr/bin/python3") + "' '" + script.string() + "' '" + folder.string() + "'";
 }
 
 // Three significant digits, or nothing where there is no number.
@@ -126,8 +129,7 @@ int study_command(const StudyOptions& options) {
   if (!options.quiet) print_table(runs);
   std::printf("bleedsim study: wrote %s and %s\n", csv.string().c_str(), h5.string().c_str());
   if (options.plots) {
-    const std::string command = "/usr/bin/python3 '" + plot_script().string() + "' '" + folder.path().string() + "'";
-    if (std::system(command.c_str()) != 0)
+    if (std::system(plot_command(folder.path()).c_str()) != 0)
       std::fprintf(stderr, "bleedsim study: plots not drawn (they need Debian's python3-matplotlib); draw them "
                            "where it is installed with: scripts/plot-study %s\n", folder.path().string().c_str());
   }
