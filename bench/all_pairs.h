@@ -5,7 +5,7 @@
 // grid's bits; the CPU and CUDA versions sum in the same order and agree with each other.
 #include <cstddef>
 
-#include "core/particles.h"
+#include "core/physics/particles.h"
 
 namespace bleedsim {
 

@@ -28,12 +28,12 @@
 #include <vector>
 
 #include "bench/bench_util.h"
-#include "core/backend.h"
-#include "core/blur_stage.h"
-#include "core/particle_model.h"
-#include "core/scene.h"
-#include "core/splat_stage.h"
-#include "core/tissue.h"
+#include "core/runtime/backend.h"
+#include "core/effects/blur_stage.h"
+#include "core/effects/particle_model.h"
+#include "core/runtime/scene.h"
+#include "core/effects/splat_stage.h"
+#include "core/runtime/tissue.h"
 
 namespace bleedsim {
 namespace {

@@ -16,12 +16,13 @@
 #include <vector>
 
 #include "bench/bench_util.h"
-#include "core/haptics.h"
-#include "core/scenario.h"
-#include "core/simulation.h"
-#include "core/timing_summary.h"
-#include "core/trace_replay.h"
-#include "core/trace_synth.h"
+#include "core/haptics/haptics.h"
+#include "core/io/trace_csv.h"
+#include "core/io/scenario.h"
+#include "core/runtime/simulation.h"
+#include "core/runtime/timing_summary.h"
+#include "core/haptics/trace_replay.h"
+#include "core/io/trace_synth.h"
 
 namespace bleedsim {
 namespace {

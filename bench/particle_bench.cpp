@@ -26,11 +26,11 @@
 
 #include "bench/all_pairs.h"
 #include "bench/bench_util.h"
-#include "core/backend.h"
-#include "core/particle_buffers.h"
-#include "core/particle_model.h"
-#include "core/particles.h"
-#include "core/scene.h"
+#include "core/runtime/backend.h"
+#include "core/effects/particle_buffers.h"
+#include "core/effects/particle_model.h"
+#include "core/physics/particles.h"
+#include "core/runtime/scene.h"
 
 namespace bleedsim {
 namespace {

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "bench/bench_util.h"
-#include "core/backend.h"
-#include "core/tissue.h"
+#include "core/runtime/backend.h"
+#include "core/runtime/tissue.h"
 
 namespace bleedsim {
 namespace {

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "core/backend.h"
-#include "core/trace_synth.h"
+#include "core/runtime/backend.h"
+#include "core/io/trace_synth.h"
 
 namespace bleedsim::cli {
 

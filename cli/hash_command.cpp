@@ -4,9 +4,9 @@
 #include <string>
 
 #include "cli/commands.h"
-#include "core/frame_hash.h"
-#include "core/hash.h"
-#include "core/scenario.h"
+#include "core/runtime/frame_hash.h"
+#include "core/runtime/hash.h"
+#include "core/io/scenario.h"
 
 namespace bleedsim::cli {
 

@@ -3,7 +3,7 @@
 #include <string>
 
 #include "cli/commands.h"
-#include "core/build_info.h"
+#include "core/runtime/build_info.h"
 
 namespace bleedsim::cli {
 

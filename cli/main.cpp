@@ -1,4 +1,4 @@
-// bleedsim: a thin command line over the library (core/simulation.h).
+// bleedsim: a thin command line over the library (core/runtime/simulation.h).
 #include <CLI/CLI.hpp>
 
 #include <cerrno>
@@ -9,9 +9,9 @@
 #include <string>
 
 #include "cli/commands.h"
-#include "core/build_info.h"
-#include "core/input_error.h"
-#include "core/study.h"
+#include "core/runtime/build_info.h"
+#include "core/runtime/input_error.h"
+#include "core/study/study.h"
 
 namespace {
 

@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-#include "core/input_error.h"
+#include "core/runtime/input_error.h"
 
 namespace bleedsim::cli {
 

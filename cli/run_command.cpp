@@ -15,13 +15,13 @@
 #include "cli/commands.h"
 #include "cli/output_folder.h"
 #include "cli/progress.h"
-#include "core/build_info.h"
-#include "core/contact_sheet.h"
-#include "core/hdf5_writer.h"
-#include "core/png_writer.h"
-#include "core/scenario.h"
-#include "core/simulation.h"
-#include "core/timing_summary.h"
+#include "core/runtime/build_info.h"
+#include "core/io/contact_sheet.h"
+#include "core/io/hdf5_writer.h"
+#include "core/io/png_writer.h"
+#include "core/io/scenario.h"
+#include "core/runtime/simulation.h"
+#include "core/runtime/timing_summary.h"
 
 namespace bleedsim::cli {
 namespace {

@@ -13,10 +13,10 @@
 #include "cli/commands.h"
 #include "cli/output_folder.h"
 #include "cli/progress.h"
-#include "core/build_info.h"
-#include "core/input_error.h"
-#include "core/scenario.h"
-#include "core/study_output.h"
+#include "core/runtime/build_info.h"
+#include "core/runtime/input_error.h"
+#include "core/io/scenario.h"
+#include "core/study/study_output.h"
 
 namespace bleedsim::cli {
 namespace {

@@ -14,8 +14,8 @@
 #include <vector>
 
 #include "cli/commands.h"
-#include "core/trace.h"
-#include "core/trace_synth.h"
+#include "core/io/trace_csv.h"
+#include "core/io/trace_synth.h"
 
 namespace bleedsim::cli {
 namespace {

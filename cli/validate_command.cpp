@@ -4,11 +4,11 @@
 #include <string>
 
 #include "cli/commands.h"
-#include "core/memory.h"
-#include "core/haptics.h"
-#include "core/pipeline.h"
-#include "core/scenario.h"
-#include "core/trace_replay.h"
+#include "core/runtime/memory.h"
+#include "core/haptics/haptics.h"
+#include "core/effects/pipeline.h"
+#include "core/io/scenario.h"
+#include "core/haptics/trace_replay.h"
 
 namespace bleedsim::cli {
 namespace {

@@ -18,4 +18,4 @@ add_custom_target(bleedsim_git_sha
   BYPRODUCTS ${BLEEDSIM_GIT_SHA_FILE}
   COMMENT "Reading the git sha"
   VERBATIM)
-configure_file(${CMAKE_SOURCE_DIR}/core/build_info.cpp.in ${CMAKE_BINARY_DIR}/generated/build_info.cpp @ONLY)
+configure_file(${CMAKE_SOURCE_DIR}/core/runtime/build_info.cpp.in ${CMAKE_BINARY_DIR}/generated/build_info.cpp @ONLY)

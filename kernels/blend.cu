@@ -1,7 +1,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "core/blend.h"
+#include "core/physics/blend.h"
 #include "kernels/cuda_check.h"
 #include "kernels/pixel_launch.h"
 

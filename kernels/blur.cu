@@ -1,6 +1,6 @@
 #include <cstddef>
 
-#include "core/blur.h"
+#include "core/physics/blur.h"
 #include "kernels/cuda_check.h"
 #include "kernels/pixel_launch.h"
 

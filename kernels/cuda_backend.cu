@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "core/backend.h"
+#include "core/runtime/backend.h"
 #include "kernels/cuda_check.h"
 
 namespace bleedsim {

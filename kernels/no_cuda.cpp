@@ -1,7 +1,7 @@
 // A build without nvcc has no CUDA backend; it says so instead of failing to link.
 #include <stdexcept>
 
-#include "core/backend.h"
+#include "core/runtime/backend.h"
 
 namespace bleedsim {
 namespace {

@@ -1,11 +1,11 @@
-// The CUDA twin of the particle step: launches of core/particles.h. The sort is CUB's radix sort
+// The CUDA twin of the particle step: launches of core/physics/particles.h. The sort is CUB's radix sort
 // on the cell key with the slot as value; it is stable, so it orders (cell, slot) exactly as the
 // CPU reference's counting sort does.
 #include <cub/device/device_radix_sort.cuh>
 
 #include <cstddef>
 
-#include "core/particles.h"
+#include "core/physics/particles.h"
 #include "kernels/cuda_check.h"
 
 namespace bleedsim {

@@ -1,6 +1,6 @@
 #include <cstddef>
 
-#include "core/splat.h"
+#include "core/physics/splat.h"
 #include "kernels/cuda_check.h"
 #include "kernels/pixel_launch.h"
 

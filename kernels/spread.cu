@@ -1,6 +1,6 @@
 #include <cstddef>
 
-#include "core/spread.h"
+#include "core/physics/spread.h"
 #include "kernels/cuda_check.h"
 #include "kernels/pixel_launch.h"
 

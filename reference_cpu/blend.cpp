@@ -1,4 +1,4 @@
-#include "core/blend.h"
+#include "core/physics/blend.h"
 
 #include <cstddef>
 

@@ -1,4 +1,4 @@
-#include "core/blur.h"
+#include "core/physics/blur.h"
 #include "reference_cpu/parallel_rows.h"
 
 namespace bleedsim {

@@ -7,8 +7,8 @@
 #include <string>
 #include <thread>
 
-#include "core/backend.h"
-#include "core/memory.h"
+#include "core/runtime/backend.h"
+#include "core/runtime/memory.h"
 
 namespace bleedsim {
 namespace {

@@ -1,9 +1,9 @@
-// The CPU reference of the particle step: loops over core/particles.h. The sort is a counting
+// The CPU reference of the particle step: loops over core/physics/particles.h. The sort is a counting
 // sort, which is stable, so it orders (cell, slot) exactly as the GPU's radix sort does.
 #include <algorithm>
 #include <cstring>
 
-#include "core/particles.h"
+#include "core/physics/particles.h"
 #include "reference_cpu/parallel_rows.h"
 
 namespace bleedsim {

@@ -1,6 +1,6 @@
 #include <algorithm>
 
-#include "core/splat.h"
+#include "core/physics/splat.h"
 #include "reference_cpu/parallel_rows.h"
 
 namespace bleedsim {

@@ -1,4 +1,4 @@
-#include "core/spread.h"
+#include "core/physics/spread.h"
 
 #include <cstddef>
 

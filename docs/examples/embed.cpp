@@ -5,8 +5,8 @@
 #include <cstring>
 #include <vector>
 
-#include "core/simulation.h"
-#include "core/tissue.h"
+#include "core/runtime/simulation.h"
+#include "core/runtime/tissue.h"
 
 int main() {
   using namespace bleedsim;

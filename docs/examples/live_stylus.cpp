@@ -11,9 +11,9 @@
 #include <thread>
 #include <vector>
 
-#include "core/haptics.h"
-#include "core/simulation.h"
-#include "core/tissue.h"
+#include "core/haptics/haptics.h"
+#include "core/runtime/simulation.h"
+#include "core/runtime/tissue.h"
 
 namespace {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <utility>
 
-#include "core/backend.h"
+#include "core/runtime/backend.h"
 #include "tests/cli/cli_harness.h"
 
 namespace bleedsim::test {

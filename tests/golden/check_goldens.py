@@ -50,7 +50,7 @@ from golden_haptics import check_haptics
 STAIN_TOLERANCE = 2e-6   # float32 arithmetic in the reference, float64 here ...
 STAIN_TOLERANCE_PER_CUT = 3e-7   # ... and each overlapping cut's factor adds a few float32 roundings
 BYTE_TOLERANCE = 1       # the frame's bytes: one rounding step
-ABSORPTION_PER_MM = (4.0, 40.0, 45.0)  # the blend's Beer–Lambert coefficients (core/blend.h)
+ABSORPTION_PER_MM = (4.0, 40.0, 45.0)  # the blend's Beer–Lambert coefficients (core/physics/blend.h)
 OPTICAL_DEPTH_MAX = 32.0               # the transmission table's end: deeper reads exp(−32)
 
 

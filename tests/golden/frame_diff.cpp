@@ -6,8 +6,8 @@
 #include <cstring>
 #include <limits>
 
-#include "core/blend.h"
-#include "core/png_writer.h"
+#include "core/physics/blend.h"
+#include "core/io/png_writer.h"
 
 namespace bleedsim::golden {
 namespace {

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "core/state.h"
+#include "core/runtime/state.h"
 
 namespace bleedsim::golden {
 

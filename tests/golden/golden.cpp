@@ -8,8 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "core/hash.h"
-#include "core/hdf5_writer.h"
+#include "core/runtime/hash.h"
+#include "core/io/hdf5_writer.h"
 #include "tests/test_paths.h"
 
 namespace bleedsim::golden {

@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/simulation.h"
+#include "core/runtime/simulation.h"
 
 namespace bleedsim::golden {
 

@@ -10,7 +10,7 @@ import numpy as np
 EDGE_MM = 1e-5           # a pixel centre this close to a splat's edge may fall either side in float32
 NEVER_USED = 0xFFFFFFFF  # the age of a ring slot that never held a particle
 
-# The film (core/splat.h, docs/particles.md): deposits are summed in whole units of 2⁻²⁴ mm, each
+# The film (core/physics/splat.h, docs/particles.md): deposits are summed in whole units of 2⁻²⁴ mm, each
 # rounded half up from its float32 value (so each is off by up to half a unit, and a little more
 # for float32's products) and clamped at 1e9 units.
 SPLAT_UNIT_MM = 2.0 ** -24
@@ -37,7 +37,7 @@ def steps_in(seconds, steps_per_s):
 
 
 def particle_settings(scenario):
-    """The [particles] table with its documented defaults (core/scene.h, docs/scenario-format.md)."""
+    """The [particles] table with its documented defaults (core/runtime/scene.h, docs/scenario-format.md)."""
     p = scenario["particles"]
     fps = scenario["scene"].get("frame_rate_hz", 30.0)
     substeps = p.get("substeps", 40)
@@ -328,7 +328,7 @@ BLUR_MARGIN = 1.01              # the error bound below is first order in the un
 
 
 def blur_settings(scenario):
-    """The [blur] table with its documented defaults (core/scene.h, docs/scenario-format.md)."""
+    """The [blur] table with its documented defaults (core/runtime/scene.h, docs/scenario-format.md)."""
     b = scenario["blur"]
     radius = b.get("radius_px", 4)
     return b.get("downsample", 2), radius, b.get("sigma_px", max(0.5, radius / 2.0))

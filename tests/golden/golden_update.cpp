@@ -5,8 +5,8 @@
 #include <exception>
 #include <filesystem>
 
-#include "core/frame_hash.h"
-#include "core/scenario.h"
+#include "core/runtime/frame_hash.h"
+#include "core/io/scenario.h"
 #include "tests/golden/golden.h"
 
 int main(int argc, char** argv) {

@@ -4,8 +4,8 @@
 
 #include <filesystem>
 
-#include "core/frame_hash.h"
-#include "core/scenario.h"
+#include "core/runtime/frame_hash.h"
+#include "core/io/scenario.h"
 #include "tests/test_paths.h"
 
 namespace bleedsim {

@@ -1,0 +1,64 @@
+#include "core/effects/blur_stage.h"
+
+#include <cmath>
+#include <stdexcept>
+
+namespace bleedsim {
+namespace {
+
+int low_size(int size, int factor) { return (size + factor - 1) / factor; }
+
+std::size_t low_pixels(const Scene& scene) {
+  const int f = scene.blur->downsample;
+  return std::size_t(low_size(scene.domain.width_px, f)) * std::size_t(low_size(scene.domain.height_px, f));
+}
+
+}  // namespace
+
+std::vector<float> gaussian_weights(int radius, double sigma) {
+  std::vector<double> w(2 * std::size_t(radius) + 1);
+  double sum = 0.0;
+  for (int k = -radius; k <= radius; ++k) sum += w[k + radius] = std::exp(-0.5 * (k / sigma) * (k / sigma));
+  std::vector<float> weights;
+  for (double v : w) weights.push_back(static_cast<float>(v / sum));
+  return weights;
+}
+
+BlurStage::BlurStage(const Scene& scene, State& state, Backend& backend)
+    : Stage("blur"),
+      weights_(allocate(backend, (2 * std::size_t(scene.blur->radius_px) + 1) * sizeof(float))),
+      low_(allocate(backend, low_pixels(scene) * sizeof(float))),
+      across_(allocate(backend, low_pixels(scene) * sizeof(float))) {
+  const Field* film = state.find("splat/thickness");
+  if (!film) throw std::logic_error("the blur needs the splat stage's splat/thickness");
+  Field& blurred = add_field(state, backend,
+                             image_field(scene, "blur/thickness", ElementType::f32, 1, "mm",
+                                         "the film of blood downsampled, blurred and upsampled: what the "
+                                         "blend lays over the tissue"));
+  const BlurParams& b = *scene.blur;
+  const std::vector<float> weights = gaussian_weights(b.radius_px, b.sigma_px);
+  backend.upload(weights_.data(), weights.data(), weights.size() * sizeof(float));
+  args_.width = scene.domain.width_px;
+  args_.height = scene.domain.height_px;
+  args_.factor = b.downsample;
+  args_.low_width = low_size(args_.width, b.downsample);
+  args_.low_height = low_size(args_.height, b.downsample);
+  args_.radius = b.radius_px;
+  args_.weights = weights_.as<const float>();
+  args_.film = film->data.as<const float>();
+  args_.low = low_.as<float>();
+  args_.across = across_.as<float>();
+  args_.blurred = blurred.data.as<float>();
+}
+
+std::size_t BlurStage::bytes_for(const Scene& scene) {
+  return (2 * std::size_t(scene.blur->radius_px) + 1) * sizeof(float) + 2 * low_pixels(scene) * sizeof(float) +
+         std::size_t(scene.domain.pixel_count()) * sizeof(float);
+}
+
+void BlurStage::run(const Scene&, State&, Backend& backend) {
+  for (BlurPhase phase : {BlurPhase::downsample, BlurPhase::horizontal, BlurPhase::vertical, BlurPhase::upsample})
+    backend.blur(phase, args_);
+}
+
+}  // namespace bleedsim

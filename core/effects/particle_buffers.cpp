@@ -1,0 +1,76 @@
+#include "core/effects/particle_buffers.h"
+
+#include <numeric>
+#include <vector>
+
+namespace bleedsim {
+namespace {
+
+// Offsets of the scratch arrays, one after another, each aligned for vector loads.
+struct ScratchLayout {
+  std::size_t acceleration, cell_key, slot_index, sorted_key, sorted_slot, sorted_position,
+      sorted_velocity, cell_start, cell_end, sort_scratch, total;
+
+  ScratchLayout(const ParticleModel& m, int capacity, std::size_t sort_scratch_bytes) {
+    const std::size_t n = std::size_t(capacity);
+    const std::size_t cells = std::size_t(m.cells_x) * std::size_t(m.cells_y);
+    std::size_t at = 0;
+    const auto take = [&](std::size_t bytes) {
+      const std::size_t here = at;
+      at += (bytes + 255) / 256 * 256;
+      return here;
+    };
+    acceleration = take(2 * n * sizeof(float));
+    cell_key = take(n * sizeof(std::uint32_t));
+    slot_index = take(n * sizeof(std::uint32_t));
+    sorted_key = take(n * sizeof(std::uint32_t));
+    sorted_slot = take(n * sizeof(std::uint32_t));
+    sorted_position = take(2 * n * sizeof(float));
+    sorted_velocity = take(2 * n * sizeof(float));
+    cell_start = take(cells * sizeof(std::uint32_t));
+    cell_end = take(cells * sizeof(std::uint32_t));
+    sort_scratch = take(sort_scratch_bytes);
+    total = at;
+  }
+};
+
+template <class T>
+T* at_offset(void* base, std::size_t offset) {
+  return reinterpret_cast<T*>(static_cast<char*>(base) + offset);
+}
+
+}  // namespace
+
+std::size_t particle_scratch_bytes(const ParticleModel& model, int capacity, std::size_t sort_scratch_bytes) {
+  return ScratchLayout(model, capacity, sort_scratch_bytes).total;
+}
+
+void point_particle_scratch(ParticleArrays& a, const ParticleModel& model, void* base,
+                            std::size_t sort_scratch_bytes) {
+  const ScratchLayout layout(model, a.capacity, sort_scratch_bytes);
+  a.acceleration = at_offset<float>(base, layout.acceleration);
+  a.cell_key = at_offset<std::uint32_t>(base, layout.cell_key);
+  a.slot_index = at_offset<std::uint32_t>(base, layout.slot_index);
+  a.sorted_key = at_offset<std::uint32_t>(base, layout.sorted_key);
+  a.sorted_slot = at_offset<std::uint32_t>(base, layout.sorted_slot);
+  a.sorted_position = at_offset<float>(base, layout.sorted_position);
+  a.sorted_velocity = at_offset<float>(base, layout.sorted_velocity);
+  a.cell_start = at_offset<std::uint32_t>(base, layout.cell_start);
+  a.cell_end = at_offset<std::uint32_t>(base, layout.cell_end);
+  a.sort_scratch = sort_scratch_bytes ? at_offset<void>(base, layout.sort_scratch) : nullptr;
+  a.sort_scratch_bytes = sort_scratch_bytes;
+}
+
+void clear_particles(Backend& backend, const ParticleArrays& a) {
+  const std::size_t n = std::size_t(a.capacity);
+  const std::vector<float> zeros(2 * n, 0.0f);
+  backend.upload(a.position, zeros.data(), 2 * n * sizeof(float));
+  backend.upload(a.velocity, zeros.data(), 2 * n * sizeof(float));
+  backend.upload(a.acceleration, zeros.data(), 2 * n * sizeof(float));
+  std::vector<std::uint32_t> words(n, kNeverUsed);
+  backend.upload(a.age, words.data(), n * sizeof(std::uint32_t));
+  std::iota(words.begin(), words.end(), 0u);
+  backend.upload(a.slot_index, words.data(), n * sizeof(std::uint32_t));
+}
+
+}  // namespace bleedsim

@@ -1,0 +1,42 @@
+#pragma once
+// The particle model's constants for a run, made on the host from the scene, and the limits a
+// scene must respect for the model to stay stable (docs/particles.md derives them).
+#include <string>
+
+#include "core/physics/particles.h"
+#include "core/runtime/scene.h"
+
+namespace bleedsim {
+
+// The most particles a cut may emit per second: keeps one step's count well inside 32 bits.
+constexpr double kMaxParticleRate = 1.0e8;
+
+// Physics steps per second: frame rate × sub-steps.
+double particle_steps_per_s(const Scene& scene);
+
+// The largest stable sub-step when particles touch up to `contacts` others. In a hexagonal pile
+// (six contacts) the fastest mode has ω² = 6k and damping 6c; with z contacts, ω² ≈ zk. Semi-
+// implicit Euler with implicit drag γ keeps it bounded while z·k·dt² + (2z·c − 2γ)·dt < 4 (which
+// implies the other Jury condition, z·c·dt < 2 + γ·dt).
+double stable_time_step_s(double stiffness_per_s2, double damping_per_s, double drag_per_s, int contacts);
+
+// The contacts the enforced limit allows for: six in a hexagonal pile, and a margin for the seven
+// or eight that particles reach where a pile is overloaded or crowds against a wall.
+constexpr int kDesignContacts = 8;
+
+// The sub-step limit a scene must keep to (kDesignContacts).
+double particle_step_limit_s(const ParticleParams& params);
+
+// Why the scene's particle settings cannot run, and the key to blame (empty when they can): a
+// sub-step past the stability limit, a panel narrower than a particle, a lifetime too long to
+// count in steps, a grid too large to key.
+struct SettingsProblem {
+  std::string key;  // "particles.substeps", ...
+  std::string message;
+};
+SettingsProblem particle_settings_problem(const Scene& scene);
+
+// Requires scene.particles.
+ParticleModel make_particle_model(const Scene& scene);
+
+}  // namespace bleedsim

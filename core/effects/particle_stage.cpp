@@ -1,0 +1,144 @@
+#include "core/effects/particle_stage.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/effects/particle_buffers.h"
+#include "core/effects/particle_model.h"
+
+namespace bleedsim {
+namespace {
+
+constexpr std::size_t kInitialEmitters = 16;
+
+// CUB's radix sort needs a second copy of keys and values and a small histogram; this bounds it.
+std::size_t sort_scratch_bound(std::size_t capacity) { return 2 * capacity * 2 * sizeof(std::uint32_t) + (1u << 20); }
+
+// A non-image field: one row of `elements` (ring-buffer slots, or counters).
+Field element_field(const char* name, ElementType type, int channels, int elements, bool on_request,
+                    const char* unit, const char* description) {
+  Field field;
+  field.name = name;
+  field.type = type;
+  field.channels = channels;
+  field.width = elements;
+  field.height = 1;
+  field.unit = unit;
+  field.description = description;
+  field.image = false;
+  field.on_request = on_request;
+  return field;
+}
+
+// Particles a cut has emitted by time t: its rate over the part of [start, start + bleed] before t.
+std::uint64_t emitted_by(const Cut& cut, double t) {
+  const double bleeding = std::clamp(t - cut.start_s, 0.0, cut.bleed_s);
+  return std::uint64_t(std::floor(cut.rate_per_s * bleeding));
+}
+
+}  // namespace
+
+ParticleStage::ParticleStage(const Scene& scene, State& state, Backend& backend)
+    : Stage("particles"),
+      accounting_(std::uint64_t(scene.particles->capacity), make_particle_model(scene).lifetime_steps) {
+  const int capacity = scene.particles->capacity;
+  const ParticleModel model = make_particle_model(scene);
+  ParticleArrays& a = args_.arrays;
+  a.capacity = capacity;
+  Field& position = add_field(state, backend, element_field("particles/position", ElementType::f32, 2, capacity, true,
+                                                            "mm", "centre of each ring-buffer slot's particle"));
+  Field& velocity = add_field(state, backend, element_field("particles/velocity", ElementType::f32, 2, capacity, true,
+                                                            "mm/s", "velocity of each slot's particle"));
+  Field& age = add_field(state, backend, element_field("particles/age", ElementType::u32, 1, capacity, true, "steps",
+                                                       "steps each slot's particle has lived; a slot holds "
+                                                       "a live particle while its age is below the lifetime"));
+  counts_ = &add_field(state, backend,
+                       element_field("particles/accounting", ElementType::u64, 1, 4, false, "particles",
+                                      "emitted, alive, expired, overwritten: emitted = alive + expired + "
+                                      "overwritten"));
+  a.position = position.data.as<float>();
+  a.velocity = velocity.data.as<float>();
+  a.age = age.data.as<std::uint32_t>();
+  args_.model = model;
+
+  const std::size_t sort_bytes = backend.particle_sort_scratch_bytes(capacity, model.key_bits);
+  scratch_ = allocate(backend, particle_scratch_bytes(model, capacity, sort_bytes));
+  point_particle_scratch(a, model, scratch_.data(), sort_bytes);
+  emitters_ = allocate(backend, std::max(kInitialEmitters, scene.cuts.size()) * sizeof(Emitter));
+
+  clear_particles(backend, a);
+  const ParticleCounts none{};
+  backend.upload(counts_->data.data(), &none, sizeof none);
+}
+
+std::size_t ParticleStage::bytes_for(const Scene& scene) {
+  const std::size_t n = std::size_t(scene.particles->capacity);
+  const ParticleModel model = make_particle_model(scene);
+  const std::size_t fields = n * (2 * sizeof(float) + 2 * sizeof(float) + sizeof(std::uint32_t)) +
+                             sizeof(ParticleCounts);
+  return fields + particle_scratch_bytes(model, scene.particles->capacity, sort_scratch_bound(n)) +
+         std::max(kInitialEmitters, scene.cuts.size()) * sizeof(Emitter);
+}
+
+void ParticleStage::emit(const Scene& scene, const State& state, Backend& backend, std::uint64_t step) {
+  const double steps_per_s = particle_steps_per_s(scene);
+  const double t0 = double(step) / steps_per_s, t1 = double(step + 1) / steps_per_s;
+  const std::uint64_t capacity = std::uint64_t(args_.arrays.capacity);
+  new_.clear();
+  std::uint64_t id = accounting_.counts().emitted, total = 0;
+  for (const Cut& cut : state.cuts) {
+    const std::uint64_t count = emitted_by(cut, t1) - emitted_by(cut, t0);
+    if (count == 0) continue;
+    // first_new is set once the step's total is known (below).
+    new_.push_back({float(cut.x_mm), float(cut.y_mm), id, 0u, std::uint32_t(count)});
+    id += count;
+    total += count;
+  }
+  accounting_.emit(step, total);
+  if (total == 0) return;
+  // More new particles than slots: only the newest `capacity` are written; the older ones are
+  // overwritten in the same step (the accounting has counted them so).
+  std::uint64_t skip = total > capacity ? total - capacity : 0, first_new = 0;
+  std::size_t kept = 0;
+  for (Emitter e : new_) {
+    const std::uint64_t dropped = std::min<std::uint64_t>(skip, e.count);
+    skip -= dropped;
+    if (dropped == e.count) continue;
+    e.first_id += dropped;
+    e.count -= std::uint32_t(dropped);
+    e.first_new = std::uint32_t(first_new);
+    first_new += e.count;
+    new_[kept++] = e;
+  }
+  new_.resize(kept);
+  const std::size_t bytes = new_.size() * sizeof(Emitter);
+  if (bytes > emitters_.bytes()) emitters_ = allocate(backend, 2 * bytes);
+  backend.upload(emitters_.data(), new_.data(), bytes);
+  args_.emitters = emitters_.as<const Emitter>();
+  args_.emitter_count = int(new_.size());
+  args_.new_count = int(first_new);
+  args_.step = step;
+  backend.particles(ParticlePhase::emit, args_);
+}
+
+void ParticleStage::track_live_particles() {
+  args_.live_count = int(accounting_.counts().alive);
+  args_.first_live_slot = std::uint32_t(accounting_.oldest_alive() % std::uint64_t(args_.arrays.capacity));
+}
+
+void ParticleStage::run(const Scene& scene, State& state, Backend& backend) {
+  const std::uint64_t substeps = std::uint64_t(scene.particles->substeps);
+  for (std::uint64_t s = 0; s < substeps; ++s) {
+    const std::uint64_t step = std::uint64_t(state.frames_done) * substeps + s;
+    emit(scene, state, backend, step);
+    track_live_particles();
+    backend.particles(ParticlePhase::bin, args_);
+    backend.particles(ParticlePhase::collide, args_);
+    backend.particles(ParticlePhase::integrate, args_);
+    accounting_.end_step(step);
+  }
+  const ParticleCounts counts = accounting_.counts();
+  backend.upload(counts_->data.data(), &counts, sizeof counts);
+}
+
+}  // namespace bleedsim

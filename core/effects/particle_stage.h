@@ -1,0 +1,34 @@
+#pragma once
+#include <cstddef>
+#include <vector>
+
+#include "core/effects/particle_accounting.h"
+#include "core/physics/particles.h"
+#include "core/effects/stage.h"
+
+namespace bleedsim {
+
+// Each frame: `substeps` physics steps (emit, bin, collide, integrate), then the accounting
+// recorded. The ring buffer's state is in fields, so it is hashed, compared and written like any
+// other output.
+class ParticleStage final : public Stage {
+ public:
+  ParticleStage(const Scene& scene, State& state, Backend& backend);
+  // An upper bound: the CUDA sort's scratch depends on the device.
+  static std::size_t bytes_for(const Scene& scene);
+  void run(const Scene& scene, State& state, Backend& backend) override;
+
+ private:
+  void emit(const Scene& scene, const State& state, Backend& backend, std::uint64_t step);
+  // Points the step at the live particles, from the accounting (the ids in [oldest alive, emitted)).
+  void track_live_particles();
+
+  ParticleArgs args_{};
+  Field* counts_ = nullptr;  // the accounting, uploaded each frame
+  ParticleAccounting accounting_;
+  Buffer scratch_;            // every array of ParticleArrays that is not a field
+  Buffer emitters_;           // this step's Emitters, uploaded; grows with the cut list
+  std::vector<Emitter> new_;  // host side of emitters_
+};
+
+}  // namespace bleedsim

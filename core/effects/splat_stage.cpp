@@ -1,0 +1,56 @@
+#include "core/effects/splat_stage.h"
+
+#include <cmath>
+#include <stdexcept>
+
+#include "core/effects/particle_model.h"
+
+namespace bleedsim {
+namespace {
+
+std::size_t pixels(const Scene& scene) { return std::size_t(scene.domain.pixel_count()); }
+
+const Field& particle_field(const State& state, const char* name) {
+  const Field* field = state.find(name);
+  if (!field) throw std::logic_error(std::string("the splat needs the particle stage's ") + name);
+  return *field;
+}
+
+}  // namespace
+
+SplatModel make_splat_model(const ParticleParams& p) {
+  const double r = p.splat_radius_mm > 0.0 ? p.splat_radius_mm : p.diameter_mm;
+  const double footprint_mm2 = M_PI * r * r / 3.0;  // ∫ (1 − d²/R²)² dA over the disc
+  SplatModel s{};
+  s.radius_mm = float(r);
+  s.radius_sq = float(r * r);
+  s.units_per_volume = float(double(kSplatUnitsPerMm) / footprint_mm2);
+  s.particle_volume_mm3 = float(p.particle_volume_mm3);
+  return s;
+}
+
+SplatStage::SplatStage(const Scene& scene, State& state, Backend& backend)
+    : Stage("splat"), units_(allocate(backend, pixels(scene) * sizeof(std::uint64_t))) {
+  const Field& position = particle_field(state, "particles/position");
+  const Field& age = particle_field(state, "particles/age");
+  Field& thickness = add_field(state, backend,
+                               image_field(scene, "splat/thickness", ElementType::f32, 1, "mm",
+                                           "thickness of the film of blood the particles make: each one's "
+                                           "volume spread over its splat radius"));
+  args_.particles = make_particle_model(scene);
+  args_.splat = make_splat_model(*scene.particles);
+  args_.position = position.data.as<const float>();
+  args_.age = age.data.as<const std::uint32_t>();
+  args_.capacity = scene.particles->capacity;
+  args_.grid = scene.domain.grid();
+  args_.units = units_.as<std::uint64_t>();
+  args_.thickness_mm = thickness.data.as<float>();
+}
+
+std::size_t SplatStage::bytes_for(const Scene& scene) {
+  return pixels(scene) * (sizeof(std::uint64_t) + sizeof(float));
+}
+
+void SplatStage::run(const Scene&, State&, Backend& backend) { backend.splat(args_); }
+
+}  // namespace bleedsim

@@ -1,0 +1,47 @@
+#include "core/effects/spread_stage.h"
+
+#include <algorithm>
+
+namespace bleedsim {
+namespace {
+
+constexpr std::size_t kInitialCutCapacity = 16;
+
+std::size_t stain_bytes(const Scene& scene) {
+  return std::size_t(scene.domain.pixel_count()) * sizeof(float);
+}
+
+std::size_t cut_capacity_for(std::size_t cuts) { return std::max(kInitialCutCapacity, cuts); }
+
+}  // namespace
+
+SpreadStage::SpreadStage(const Scene& scene, State& state, Backend& backend)
+    : Stage("spread"),
+      stain_(add_field(state, backend,
+                       image_field(scene, "spread/stain", ElementType::f32, 1, "1",
+                                   "radial-spread stain: fraction of the tissue's green and blue taken out "
+                                   "(report 2.2.1)"))),
+      cuts_(allocate(backend, cut_capacity_for(scene.cuts.size()) * sizeof(SpreadCut))) {}
+
+std::size_t SpreadStage::bytes_for(const Scene& scene) {
+  return stain_bytes(scene) + cut_capacity_for(scene.cuts.size()) * sizeof(SpreadCut);
+}
+
+void SpreadStage::run(const Scene& scene, State& state, Backend& backend) {
+  // Cuts that have not started add nothing (1 − 0 leaves the product exact): leave them out.
+  const double t = scene.frame_time_s(state.frames_done);
+  active_.clear();
+  for (const Cut& cut : state.cuts) {
+    const float amplitude = cut_amplitude(cut.start_s, cut.growth_per_s, t);
+    if (amplitude > 0.0f)
+      active_.push_back({static_cast<float>(cut.x_mm), static_cast<float>(cut.y_mm),
+                         static_cast<float>(cut.radius_mm), amplitude});
+  }
+  const std::size_t needed = active_.size() * sizeof(SpreadCut);
+  if (needed > cuts_.bytes()) cuts_ = allocate(backend, 2 * needed);
+  if (needed > 0) backend.upload(cuts_.data(), active_.data(), needed);
+  backend.spread(SpreadArgs{cuts_.as<const SpreadCut>(), static_cast<int>(active_.size()),
+                            scene.domain.grid(), stain_.data.as<float>()});
+}
+
+}  // namespace bleedsim

@@ -1,0 +1,22 @@
+#pragma once
+#include <cstddef>
+#include <vector>
+
+#include "core/effects/stage.h"
+
+namespace bleedsim {
+
+// Each frame: the cuts' amplitudes at the frame time (host), then the stain field (backend).
+class SpreadStage final : public Stage {
+ public:
+  SpreadStage(const Scene& scene, State& state, Backend& backend);
+  static std::size_t bytes_for(const Scene& scene);
+  void run(const Scene& scene, State& state, Backend& backend) override;
+
+ private:
+  Field& stain_;
+  Buffer cuts_;  // SpreadCut per active cut, uploaded each frame; grows with the cut list
+  std::vector<SpreadCut> active_;
+};
+
+}  // namespace bleedsim

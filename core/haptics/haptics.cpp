@@ -1,0 +1,87 @@
+#include "core/haptics/haptics.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "core/runtime/message_text.h"
+
+namespace bleedsim {
+
+PassivityProblem passivity_problem(const HapticParams& p) {
+  // Colgate & Schenkel: a virtual spring k and damper b sampled every T are passive when the
+  // device's own damping exceeds k·T/2 + |b|. The spring's share is what sampling adds.
+  const double spring_share = p.stiffness_N_per_m * kHapticPeriod_s / 2;
+  const double needed = spring_share + std::abs(p.damping_Ns_per_m);
+  if (needed < p.device_damping_Ns_per_m) return {};
+  const std::string key = spring_share >= p.device_damping_Ns_per_m ? "haptics.stiffness_N_per_m"
+                                                                    : "haptics.damping_Ns_per_m";
+  return {key, "k·T/2 + |b| = " + format_number(spring_share) + " + " + format_number(p.damping_Ns_per_m) +
+                   " = " + format_number(needed) + " N·s/m is not below the device's damping of " +
+                   format_number(p.device_damping_Ns_per_m) +
+                   " N·s/m: at 1 kHz the contact could feed energy into the stylus and buzz (passivity "
+                   "bound of Colgate & Schenkel, b_device > k·T/2 + |b|, T = 1 ms); lower "
+                   "stiffness_N_per_m or damping_Ns_per_m"};
+}
+
+HapticLoop::HapticLoop(const Scene& scene)
+    : domain_(scene.domain), cut_template_(scene.cut_at(0, 0, 0)) {
+  if (!scene.haptics) throw std::invalid_argument("a haptic loop needs a scene with [haptics]");
+  params_ = *scene.haptics;
+  const PassivityProblem problem = passivity_problem(params_);
+  if (!problem.key.empty()) throw std::invalid_argument(problem.key + ": " + problem.message);
+}
+
+Eigen::Vector2d HapticLoop::on_panel(const Eigen::Vector3d& tool_m) const {
+  // The panel's y points down, the device's up.
+  const Eigen::Vector2d device_mm(1000.0 * tool_m.x(), -1000.0 * tool_m.y());
+  return Eigen::Vector2d(params_.origin_x_mm, params_.origin_y_mm) + params_.scale * device_mm;
+}
+
+bool HapticLoop::over_panel(const Eigen::Vector2d& p) const {
+  return p.x() >= 0 && p.x() <= domain_.width_mm && p.y() >= 0 && p.y() <= domain_.height_mm;
+}
+
+HapticStep HapticLoop::tick(const DeviceSample& sample) {
+  HapticStep step;
+  HapticTick& r = step.record;
+  r.tick = ticks_done_;
+  r.t_s = double(ticks_done_) / kHapticRate_hz;
+  r.tool_m = sample.position_m;
+  r.panel_mm = on_panel(sample.position_m);
+  r.buttons = sample.buttons;
+  if (ticks_done_ == 0) previous_m_ = sample.position_m;  // no speed before the first sample
+
+  // Contact: the tip below the surface plane, over the tissue (there is none beyond the panel).
+  const double depth_m = params_.surface_z_mm / 1000.0 - sample.position_m.z();
+  r.contact = depth_m > 0 && over_panel(r.panel_mm);
+  r.penetration_m = r.contact ? depth_m : 0.0;
+
+  // The force along the surface normal (+z, out of the tissue): a spring on the penetration and a
+  // damper on the tip's speed along the normal (a backward difference over one tick). The tissue
+  // pushes, never pulls, and no more than the device can.
+  if (r.contact) {
+    const double normal_speed_m_s = (sample.position_m.z() - previous_m_.z()) / kHapticPeriod_s;
+    const double push_N = params_.stiffness_N_per_m * r.penetration_m - params_.damping_Ns_per_m * normal_speed_m_s;
+    r.force_N.z() = std::clamp(push_N, 0.0, params_.max_force_N);
+  }
+  previous_m_ = sample.position_m;
+
+  // Cutting: the first contact with the button held cuts at once; then a cut every cut_spacing_mm
+  // of the path on the panel. Lifting or letting go ends the stroke.
+  r.cutting = r.contact && (sample.buttons & params_.cut_buttons) != 0;
+  if (!r.cutting) {
+    last_cut_mm_.reset();
+  } else if (!last_cut_mm_ || (r.panel_mm - *last_cut_mm_).norm() >= params_.cut_spacing_mm) {
+    last_cut_mm_ = r.panel_mm;
+    Cut cut = cut_template_;
+    cut.x_mm = r.panel_mm.x();
+    cut.y_mm = r.panel_mm.y();
+    cut.start_s = r.t_s;
+    step.cut = cut;
+  }
+  ++ticks_done_;
+  return step;
+}
+
+}  // namespace bleedsim

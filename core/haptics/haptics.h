@@ -1,0 +1,77 @@
+#pragma once
+// The 1 kHz haptic loop (docs/haptics.md). Each tick takes one sample of the Falcon, finds whether
+// the stylus touches the tissue, computes the force the device sends back, and, while the cutting
+// button is held in contact, lays cuts along the stylus' path on the panel.
+//
+// Host code only and free of frame stages: a live simulator runs a HapticLoop on its own 1 kHz
+// thread with samples from libnifalcon and hands the cuts to its Simulation; a scenario's trace
+// is replayed through the same loop between frames (Simulation::step).
+#include <Eigen/Core>
+
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "core/runtime/scene.h"
+
+namespace bleedsim {
+
+// The haptic clock's period T (the tick rate, kHapticRate_hz, is in core/runtime/scene.h).
+constexpr double kHapticPeriod_s = 1.0 / kHapticRate_hz;
+
+// One sample of the device, in libnifalcon's frame (metres; x right, y up, z towards the user).
+struct DeviceSample {
+  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();
+  std::uint8_t buttons = 0;  // bitmask of the four grip buttons
+};
+
+// What one tick found and did: one row of the haptic channel (HDF5 /haptics, docs/output-format.md).
+struct HapticTick {
+  std::int64_t tick = 0;
+  double t_s = 0;
+  Eigen::Vector3d tool_m = Eigen::Vector3d::Zero();    // the sample's position, device frame
+  Eigen::Vector2d panel_mm = Eigen::Vector2d::Zero();  // where it lies over the tissue panel
+  std::uint8_t buttons = 0;
+  bool contact = false;       // the tip is below the surface, over the panel
+  double penetration_m = 0;   // how far below the surface (0 out of contact)
+  Eigen::Vector3d force_N = Eigen::Vector3d::Zero();  // sent to the device
+  bool cutting = false;       // in contact with a cutting button held
+};
+
+// The outcome of a tick: its record, and the cut it made, if any.
+struct HapticStep {
+  HapticTick record;
+  std::optional<Cut> cut;
+};
+
+// Why these contact parameters cannot be rendered passively at 1 kHz (Colgate & Schenkel:
+// b_device > k·T/2 + |b|), or "" when they can. `key` names the offending parameter.
+struct PassivityProblem {
+  std::string key;
+  std::string message;
+};
+PassivityProblem passivity_problem(const HapticParams& params);
+
+class HapticLoop {
+ public:
+  // Keeps what it needs of the scene (the panel, the contact parameters, the cuts' wound).
+  // Throws std::invalid_argument when the scene has no [haptics] or its parameters are not passive.
+  explicit HapticLoop(const Scene& scene);
+
+  // Tick number ticks_done(): contact, force and cut for this sample.
+  HapticStep tick(const DeviceSample& sample);
+  std::int64_t ticks_done() const { return ticks_done_; }
+
+ private:
+  Eigen::Vector2d on_panel(const Eigen::Vector3d& tool_m) const;
+  bool over_panel(const Eigen::Vector2d& panel_mm) const;
+
+  HapticParams params_;
+  Domain domain_;
+  Cut cut_template_;  // the scene's wound: what a cut leaves out of position and time
+  std::int64_t ticks_done_ = 0;
+  Eigen::Vector3d previous_m_ = Eigen::Vector3d::Zero();
+  std::optional<Eigen::Vector2d> last_cut_mm_;  // the stroke's latest cut; none between strokes
+};
+
+}  // namespace bleedsim

@@ -1,0 +1,484 @@
+#include "core/io/hdf5_writer.h"
+
+#include <hdf5.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <limits>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "core/haptics/haptic_channel.h"
+
+namespace bleedsim {
+namespace {
+
+// --- Handles -----------------------------------------------------------------------------------
+
+// Owns one HDF5 identifier and closes it with the function that matches its kind. close() reports
+// the status (finish() must know the file really closed); the destructor cannot, and ignores it.
+template <herr_t (*Close)(hid_t)>
+class Handle {
+ public:
+  Handle() = default;
+  explicit Handle(hid_t id) : id_(id) {}
+  Handle(Handle&& other) noexcept : id_(std::exchange(other.id_, H5I_INVALID_HID)) {}
+  Handle& operator=(Handle&& other) noexcept {
+    if (this != &other) {
+      close();
+      id_ = std::exchange(other.id_, H5I_INVALID_HID);
+    }
+    return *this;
+  }
+  Handle(const Handle&) = delete;
+  Handle& operator=(const Handle&) = delete;
+  ~Handle() { close(); }
+
+  hid_t get() const { return id_; }
+  herr_t close() { return id_ >= 0 ? Close(std::exchange(id_, H5I_INVALID_HID)) : 0; }
+
+ private:
+  hid_t id_ = H5I_INVALID_HID;
+};
+
+using File = Handle<H5Fclose>;
+using Group = Handle<H5Gclose>;
+using Dataset = Handle<H5Dclose>;
+using Dataspace = Handle<H5Sclose>;
+using Datatype = Handle<H5Tclose>;
+using Attribute = Handle<H5Aclose>;
+using PropertyList = Handle<H5Pclose>;
+
+// --- Errors ------------------------------------------------------------------------------------
+
+// The description HDF5 recorded where the failure was first detected (the innermost frame of its
+// error stack): it usually carries the OS reason, e.g. "No such file or directory".
+herr_t keep_innermost(unsigned depth, const H5E_error2_t* error, void* out) {
+  if (depth == 0 && error->desc) *static_cast<std::string*>(out) = error->desc;
+  return 0;
+}
+
+[[noreturn]] void throw_hdf5_error(const std::string& what) {
+  std::string detail;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, keep_innermost, &detail);
+  throw std::runtime_error(what + (detail.empty() ? "" : " (HDF5: " + detail + ")"));
+}
+
+// Every HDF5 call goes through one of these: a negative id or status becomes an exception that
+// names the file and the operation.
+struct Checker {
+  std::string file;
+
+  hid_t operator()(hid_t id, const std::string& operation) const {
+    if (id < 0) fail(operation);
+    return id;
+  }
+  void operator()(herr_t status, const std::string& operation) const {
+    if (status < 0) fail(operation);
+  }
+  [[noreturn]] void fail(const std::string& operation) const {
+    throw_hdf5_error("cannot " + operation + " in HDF5 file '" + file + "'");
+  }
+};
+
+// --- Types -------------------------------------------------------------------------------------
+
+// The file types are spelled out (little-endian), so the file does not depend on the host.
+hid_t stored_type_of(ElementType type) {
+  switch (type) {
+    case ElementType::u8: return H5T_STD_U8LE;
+    case ElementType::u32: return H5T_STD_U32LE;
+    case ElementType::u64: return H5T_STD_U64LE;
+    case ElementType::f32: return H5T_IEEE_F32LE;
+  }
+  throw std::logic_error("HDF5 writer: unknown element type");
+}
+hid_t memory_type_of(ElementType type) {
+  switch (type) {
+    case ElementType::u8: return H5T_NATIVE_UINT8;
+    case ElementType::u32: return H5T_NATIVE_UINT32;
+    case ElementType::u64: return H5T_NATIVE_UINT64;
+    case ElementType::f32: return H5T_NATIVE_FLOAT;
+  }
+  throw std::logic_error("HDF5 writer: unknown element type");
+}
+
+Datatype string_type(const Checker& check, size_t size, H5T_cset_t cset) {
+  Datatype type{check(H5Tcopy(H5T_C_S1), "copy the string type")};
+  check(H5Tset_size(type.get(), size), "size a string type");
+  check(H5Tset_strpad(type.get(), H5T_STR_NULLTERM), "set string padding");
+  check(H5Tset_cset(type.get(), cset), "set a string character set");
+  return type;
+}
+
+// --- Attributes --------------------------------------------------------------------------------
+
+// Writes a scalar attribute, creating it the first time and overwriting it after (frames_written
+// is rewritten on every append).
+void write_scalar_attribute(const Checker& check, hid_t object, const std::string& where,
+                            const std::string& name, hid_t stored_type, hid_t memory_type,
+                            const void* value) {
+  const std::string what = "attribute " + name + " of " + where;
+  const htri_t exists = H5Aexists(object, name.c_str());
+  check(herr_t(exists), "look up " + what);
+  Attribute attribute;
+  if (exists > 0) {
+    attribute = Attribute{check(H5Aopen(object, name.c_str(), H5P_DEFAULT), "open " + what)};
+  } else {
+    Dataspace scalar{check(H5Screate(H5S_SCALAR), "create a scalar dataspace")};
+    attribute = Attribute{
+        check(H5Acreate2(object, name.c_str(), stored_type, scalar.get(), H5P_DEFAULT, H5P_DEFAULT),
+              "create " + what)};
+  }
+  check(H5Awrite(attribute.get(), memory_type, value), "write " + what);
+}
+
+// Text for people and for h5py: a variable-length UTF-8 string, read back as str.
+void write_text_attribute(const Checker& check, hid_t object, const std::string& where,
+                          const std::string& name, const std::string& value) {
+  Datatype type = string_type(check, H5T_VARIABLE, H5T_CSET_UTF8);
+  const char* text = value.c_str();
+  write_scalar_attribute(check, object, where, name, type.get(), type.get(), &text);
+}
+
+// The HDF5 Image specification wants fixed-length, null-terminated ASCII strings; HDFView looks
+// for exactly those before it offers to show a dataset as an image.
+void write_image_spec_attribute(const Checker& check, hid_t object, const std::string& where,
+                                const std::string& name, const std::string& value) {
+  Datatype type = string_type(check, value.size() + 1, H5T_CSET_ASCII);
+  write_scalar_attribute(check, object, where, name, type.get(), type.get(), value.c_str());
+}
+
+void write_image_attributes(const Checker& check, hid_t dataset, const std::string& where,
+                            const FieldLayout& field) {
+  if (!field.image) return;  // a per-element array (particles, counters) is no picture
+  const bool truecolor =
+      field.type == ElementType::u8 && (field.channels == 3 || field.channels == 4);
+  const bool grayscale = field.channels == 1;
+  if (!truecolor && !grayscale) return;  // no image class fits: HDFView shows it as a table
+  write_image_spec_attribute(check, dataset, where, "CLASS", "IMAGE");
+  write_image_spec_attribute(check, dataset, where, "IMAGE_VERSION", "1.2");
+  if (truecolor) {
+    write_image_spec_attribute(check, dataset, where, "IMAGE_SUBCLASS", "IMAGE_TRUECOLOR");
+    write_image_spec_attribute(check, dataset, where, "INTERLACE_MODE", "INTERLACE_PIXEL");
+  } else {
+    write_image_spec_attribute(check, dataset, where, "IMAGE_SUBCLASS", "IMAGE_GRAYSCALE");
+    const std::uint8_t white_is_zero = 0;
+    write_scalar_attribute(check, dataset, where, "IMAGE_WHITE_IS_ZERO", H5T_STD_U8LE,
+                           H5T_NATIVE_UINT8, &white_is_zero);
+  }
+}
+
+// --- Objects -----------------------------------------------------------------------------------
+
+// Object headers record creation/modification times unless told not to; with them the same run
+// would give different bytes every second. Groups and datasets both take the setting.
+PropertyList creation_plist(const Checker& check, hid_t plist_class) {
+  PropertyList plist{check(H5Pcreate(plist_class), "create a property list")};
+  check(H5Pset_obj_track_times(plist.get(), 0), "turn off object time tracking");
+  return plist;
+}
+
+std::vector<std::string> split_path(const std::string& name) {
+  std::vector<std::string> parts;
+  std::size_t begin = 0;
+  while (true) {
+    const std::size_t end = name.find('/', begin);
+    parts.push_back(name.substr(begin, end - begin));
+    if (end == std::string::npos) return parts;
+    begin = end + 1;
+  }
+}
+
+// Opens (or creates, without time tracking) every group on the way to `parts`' last element.
+Group open_parent_group(const Checker& check, hid_t file, const std::vector<std::string>& parts) {
+  Group group{check(H5Gopen2(file, "/", H5P_DEFAULT), "open the root group")};
+  std::string where;
+  for (std::size_t i = 0; i + 1 < parts.size(); ++i) {
+    where += "/" + parts[i];
+    const char* name = parts[i].c_str();
+    const htri_t exists = H5Lexists(group.get(), name, H5P_DEFAULT);
+    check(herr_t(exists), "look up group " + where);
+    if (exists > 0) {
+      group = Group{check(H5Gopen2(group.get(), name, H5P_DEFAULT), "open group " + where)};
+    } else {
+      PropertyList gcpl = creation_plist(check, H5P_GROUP_CREATE);
+      group = Group{check(H5Gcreate2(group.get(), name, H5P_DEFAULT, gcpl.get(), H5P_DEFAULT),
+                          "create group " + where)};
+    }
+  }
+  return group;
+}
+
+// A dataset that grows by one frame per append along its first dimension (time).
+struct GrowingDataset {
+  std::string where;                    // "/spread/stain", for messages
+  hid_t memory_type = H5I_INVALID_HID;  // what append() hands over
+  std::vector<hsize_t> frame_shape;     // (1, H, W[, C]) for an image, (1, N[, C]) for a
+                                        // per-element array, (1) for /time
+  Dataset dataset;
+};
+
+// Creates it empty, chunked by `chunk_frames` frames.
+GrowingDataset create_growing_dataset(const Checker& check, hid_t parent, const std::string& name,
+                                      const std::string& where, hid_t stored_type,
+                                      hid_t memory_type, std::vector<hsize_t> frame_shape,
+                                      hsize_t chunk_frames, int deflate_level) {
+  std::vector<hsize_t> dims = frame_shape, max_dims = frame_shape, chunk = frame_shape;
+  dims[0] = 0;
+  max_dims[0] = H5S_UNLIMITED;
+  chunk[0] = chunk_frames;
+  Dataspace space{check(H5Screate_simple(int(dims.size()), dims.data(), max_dims.data()),
+                        "create the dataspace of " + where)};
+  PropertyList dcpl = creation_plist(check, H5P_DATASET_CREATE);
+  check(H5Pset_chunk(dcpl.get(), int(chunk.size()), chunk.data()), "set the chunks of " + where);
+  if (deflate_level > 0) {
+    // Shuffle groups the bytes of each float by significance, which deflate compresses far better.
+    check(H5Pset_shuffle(dcpl.get()), "set the shuffle filter of " + where);
+    check(H5Pset_deflate(dcpl.get(), unsigned(deflate_level)),
+          "set the deflate filter of " + where);
+  }
+  Dataset dataset{check(H5Dcreate2(parent, name.c_str(), stored_type, space.get(), H5P_DEFAULT,
+                                   dcpl.get(), H5P_DEFAULT),
+                        "create dataset " + where)};
+  return {where, memory_type, std::move(frame_shape), std::move(dataset)};
+}
+
+// Grows the dataset to first + rows entries and writes `data` (that many entries) as the last ones.
+void write_rows(const Checker& check, const GrowingDataset& target, hsize_t first, hsize_t rows,
+                const void* data) {
+  const std::string& where = target.where;
+  std::vector<hsize_t> dims = target.frame_shape;
+  dims[0] = first + rows;
+  check(H5Dset_extent(target.dataset.get(), dims.data()), "extend dataset " + where);
+  if (rows == 0) return;
+
+  Dataspace file_space{check(H5Dget_space(target.dataset.get()), "get the dataspace of " + where)};
+  std::vector<hsize_t> start(dims.size(), 0);
+  start[0] = first;
+  std::vector<hsize_t> count = target.frame_shape;
+  count[0] = rows;
+  const std::string entries = "entries " + std::to_string(first) + ".." + std::to_string(first + rows - 1);
+  check(H5Sselect_hyperslab(file_space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(),
+                            nullptr),
+        "select " + entries + " of " + where);
+  Dataspace memory_space{check(H5Screate_simple(int(count.size()), count.data(), nullptr),
+                               "create the memory dataspace of " + where)};
+  check(H5Dwrite(target.dataset.get(), target.memory_type, memory_space.get(), file_space.get(),
+                 H5P_DEFAULT, data),
+        "write " + entries + " of " + where);
+}
+
+void write_frame(const Checker& check, const GrowingDataset& target, hsize_t frame, const void* data) {
+  write_rows(check, target, frame, 1, data);
+}
+
+// --- Checks on the caller's input ----------------------------------------------------------------
+
+// HDF5 stores a chunk's size in 32 bits; a frame is one chunk, so one frame must fit.
+constexpr std::uint64_t kMaxChunkBytes = 0xffffffffu;
+
+std::uint64_t frame_bytes(const FieldLayout& field) {
+  std::uint64_t bytes = element_size(field.type);
+  for (const int extent : {field.channels, field.width, field.height}) {
+    if (bytes > std::numeric_limits<std::uint64_t>::max() / std::uint64_t(extent))
+      return std::numeric_limits<std::uint64_t>::max();
+    bytes *= std::uint64_t(extent);
+  }
+  return bytes;
+}
+
+void validate(const std::vector<FieldLayout>& fields,
+              const std::vector<std::pair<std::string, std::string>>& attributes,
+              int deflate_level) {
+  if (deflate_level < 0 || deflate_level > 9)
+    throw std::invalid_argument("HDF5 deflate level must be 0-9, got " +
+                                std::to_string(deflate_level));
+  std::set<std::string> names = {"time"};
+  for (const FieldLayout& field : fields) {
+    const std::string quoted = "HDF5 field '" + field.name + "'";
+    for (const std::string& part : split_path(field.name))
+      if (part.empty() || part == "." || part == "..")
+        throw std::invalid_argument(quoted + ": a name is a relative path like 'spread/stain'");
+    if (!names.insert(field.name).second)
+      throw std::invalid_argument(quoted + " is named twice (or clashes with /time)");
+    if (field.width <= 0 || field.height <= 0 || field.channels <= 0)
+      throw std::invalid_argument(quoted + ": width, height and channels must be positive");
+    if (!field.image && field.height != 1)
+      throw std::invalid_argument(quoted + ": a field that is not an image has height 1 (got " +
+                                  std::to_string(field.height) + "); its width counts elements");
+    if (frame_bytes(field) > kMaxChunkBytes)
+      throw std::runtime_error(quoted +
+                               ": one frame is larger than 4 GiB, HDF5's largest chunk "
+                               "(each frame is one chunk)");
+  }
+  std::set<std::string> attribute_names = {"complete", "frames_written"};
+  for (const auto& attribute : attributes)
+    if (!attribute_names.insert(attribute.first).second)
+      throw std::invalid_argument("HDF5 root attribute '" + attribute.first +
+                                  "' is given twice or is one the writer sets itself");
+}
+
+}  // namespace
+
+// --- The writer --------------------------------------------------------------------------------
+
+struct Hdf5FrameWriter::Impl {
+  std::string final_path;
+  Checker check;  // names the .partial file
+  // Declared before the datasets so that it is destroyed after them: HDF5 only really closes a
+  // file once nothing in it is open.
+  File file;
+  GrowingDataset time;
+  std::vector<GrowingDataset> fields;
+  std::vector<GrowingDataset> haptics;  // one per haptic column, when the run has the channel
+  std::int64_t frames = 0;
+  std::int64_t ticks = 0;
+  bool finished = false;
+
+  void write_root_attribute(const std::string& name, hid_t stored_type, hid_t memory_type,
+                            const void* value) {
+    write_scalar_attribute(check, file.get(), "/", name, stored_type, memory_type, value);
+  }
+  void write_frames_written() {
+    write_root_attribute("frames_written", H5T_STD_I64LE, H5T_NATIVE_INT64, &frames);
+  }
+  void write_complete(bool complete) {
+    const std::int8_t value = complete ? 1 : 0;
+    write_root_attribute("complete", H5T_STD_I8LE, H5T_NATIVE_INT8, &value);
+  }
+};
+
+Hdf5FrameWriter::Hdf5FrameWriter(const std::string& path, const std::vector<FieldLayout>& fields,
+                                 const std::vector<std::pair<std::string, std::string>>& attributes,
+                                 int deflate_level, bool haptic_channel)
+    : impl_(std::make_unique<Impl>()) {
+  validate(fields, attributes, deflate_level);
+  // Errors come back as exceptions carrying HDF5's message; its own printing to stderr would
+  // only repeat them (and scare users on errors the caller handles).
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+
+  Impl& impl = *impl_;
+  impl.final_path = path;
+  impl.check.file = path + ".partial";
+  const Checker& check = impl.check;
+
+  // The root group is created from the file creation list, which is also an object creation list.
+  PropertyList fcpl = creation_plist(check, H5P_FILE_CREATE);
+  const hid_t file = H5Fcreate(check.file.c_str(), H5F_ACC_TRUNC, fcpl.get(), H5P_DEFAULT);
+  if (file < 0) throw_hdf5_error("cannot create HDF5 file '" + check.file + "'");
+  impl.file = File{file};
+
+  for (const auto& [name, value] : attributes) write_text_attribute(check, file, "/", name, value);
+  impl.write_complete(false);
+  impl.write_frames_written();
+
+  // One value per frame: chunks of many frames, unfiltered (8 bytes a frame is not worth it).
+  impl.time = create_growing_dataset(check, file, "time", "/time", H5T_IEEE_F64LE,
+                                     H5T_NATIVE_DOUBLE, {1}, 1024, 0);
+  const hid_t time = impl.time.dataset.get();
+  write_text_attribute(check, time, "/time", "unit", "s");
+  write_text_attribute(check, time, "/time", "description",
+                       "simulated time of each frame (end of its frame period)");
+
+  for (const FieldLayout& spec : fields) {
+    const std::vector<std::string> parts = split_path(spec.name);
+    const std::string where = "/" + spec.name;
+    // An image is (T, H, W[, C]); a per-element array (T, N[, C]), as H5MD stores a
+    // per-particle time series.
+    std::vector<hsize_t> frame_shape = {1};
+    if (spec.image) frame_shape.push_back(hsize_t(spec.height));
+    frame_shape.push_back(hsize_t(spec.width));
+    if (spec.channels != 1) frame_shape.push_back(hsize_t(spec.channels));
+
+    Group parent = open_parent_group(check, file, parts);
+    impl.fields.push_back(
+        create_growing_dataset(check, parent.get(), parts.back(), where, stored_type_of(spec.type),
+                               memory_type_of(spec.type), frame_shape, 1, deflate_level));
+    const hid_t dataset = impl.fields.back().dataset.get();
+    write_text_attribute(check, dataset, where, "unit", spec.unit);
+    write_text_attribute(check, dataset, where, "description", spec.description);
+    write_image_attributes(check, dataset, where, spec);
+  }
+  if (haptic_channel) {
+    // One row per 1 kHz tick, (N) or (N, C): chunks of a second of ticks.
+    Group group = open_parent_group(check, file, {"haptics", ""});
+    write_text_attribute(check, group.get(), "/haptics", "description",
+                         "the 1 kHz haptic loop, one row per tick (docs/haptics.md)");
+    for (const HapticColumn& column : haptic_columns()) {
+      const std::string where = std::string("/haptics/") + column.name;
+      std::vector<hsize_t> row_shape = {1};
+      if (column.components != 1) row_shape.push_back(hsize_t(column.components));
+      const bool f64 = column.type == HapticColumn::Type::f64;
+      impl.haptics.push_back(create_growing_dataset(check, group.get(), column.name, where,
+                                                    f64 ? H5T_IEEE_F64LE : H5T_STD_U8LE,
+                                                    f64 ? H5T_NATIVE_DOUBLE : H5T_NATIVE_UINT8, row_shape,
+                                                    hsize_t(kHapticRate_hz), deflate_level));
+      write_text_attribute(check, impl.haptics.back().dataset.get(), where, "unit", column.unit);
+      write_text_attribute(check, impl.haptics.back().dataset.get(), where, "description", column.description);
+    }
+  }
+  check(H5Fflush(file, H5F_SCOPE_GLOBAL), "flush");
+}
+
+// Unfinished: the handles close (the file stays valid, with every flushed frame) and the name
+// stays .partial, so nobody mistakes it for a finished run.
+Hdf5FrameWriter::~Hdf5FrameWriter() = default;
+
+void Hdf5FrameWriter::append(double time_s, const std::vector<const void*>& field_data,
+                             const std::vector<HapticTick>& ticks) {
+  Impl& impl = *impl_;
+  if (impl.finished) throw std::logic_error("Hdf5FrameWriter::append after finish");
+  if (field_data.size() != impl.fields.size())
+    throw std::invalid_argument("Hdf5FrameWriter::append: " + std::to_string(field_data.size()) +
+                                " pointers for " + std::to_string(impl.fields.size()) + " fields");
+  for (std::size_t i = 0; i < field_data.size(); ++i)
+    if (!field_data[i])
+      throw std::invalid_argument("Hdf5FrameWriter::append: no data for " + impl.fields[i].where);
+  if (!ticks.empty() && impl.haptics.empty())
+    throw std::invalid_argument("Hdf5FrameWriter::append: haptic ticks for a file made without the haptic channel");
+
+  const hsize_t frame = hsize_t(impl.frames);
+  write_frame(impl.check, impl.time, frame, &time_s);
+  for (std::size_t i = 0; i < field_data.size(); ++i)
+    write_frame(impl.check, impl.fields[i], frame, field_data[i]);
+  for (std::size_t c = 0; c < impl.haptics.size(); ++c) {
+    const std::vector<std::uint8_t> bytes = haptic_column_bytes(haptic_columns()[c], ticks);
+    write_rows(impl.check, impl.haptics[c], hsize_t(impl.ticks), hsize_t(ticks.size()), bytes.data());
+  }
+  impl.ticks += std::int64_t(ticks.size());
+  // The count is only raised once the frame is in every dataset, then all of it goes to disk:
+  // a run killed from here on keeps this frame.
+  ++impl.frames;
+  impl.write_frames_written();
+  impl.check(H5Fflush(impl.file.get(), H5F_SCOPE_GLOBAL), "flush");
+}
+
+void Hdf5FrameWriter::finish(bool complete) {
+  Impl& impl = *impl_;
+  if (impl.finished) throw std::logic_error("Hdf5FrameWriter::finish called twice");
+  impl.finished = true;  // whatever happens below, the writer takes no more frames
+
+  impl.write_complete(complete);
+  impl.write_frames_written();
+  // Close explicitly, checking each: only a file that closed cleanly takes its final name.
+  impl.check(impl.time.dataset.close(), "close dataset /time");
+  for (GrowingDataset& field : impl.fields)
+    impl.check(field.dataset.close(), "close dataset " + field.where);
+  for (GrowingDataset& column : impl.haptics)
+    impl.check(column.dataset.close(), "close dataset " + column.where);
+  impl.check(impl.file.close(), "close the file");
+
+  std::error_code error;
+  std::filesystem::rename(impl.check.file, impl.final_path, error);
+  if (error)
+    throw std::runtime_error("cannot rename HDF5 file '" + impl.check.file + "' to '" +
+                             impl.final_path + "': " + error.message());
+}
+
+int Hdf5FrameWriter::frames_written() const { return int(impl_->frames); }
+
+}  // namespace bleedsim

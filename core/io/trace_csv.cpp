@@ -1,0 +1,383 @@
+#include "core/io/trace_csv.h"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <utility>
+
+#include "core/runtime/message_text.h"
+
+namespace bleedsim {
+namespace {
+
+namespace fs = std::filesystem;
+
+const char* const kColumns[] = {"t_s", "x_m", "y_m", "z_m", "buttons", "fx_N", "fy_N", "fz_N"};
+const std::string kHeader = "t_s,x_m,y_m,z_m,buttons";
+const std::string kForceHeader = "t_s,x_m,y_m,z_m,buttons,fx_N,fy_N,fz_N";
+const char* const kRequired[] = {"device", "frame", "rate_hz"};
+
+
+// A number for a human: `digits` significant digits (for rates, durations).
+std::string rounded(double value, int digits = 4) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.*g", digits, value);
+  return text;
+}
+
+std::string fixed(double value, int decimals) {
+  char text[48];
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  return text;
+}
+
+bool is_space(char c) { return c == ' ' || c == '\t'; }
+
+// A field of a line: its text without surrounding blanks and its 1-based column.
+struct Field {
+  std::string text;
+  int column;
+};
+
+Field trimmed(const std::string& line, std::size_t begin, std::size_t end) {
+  while (begin < end && is_space(line[begin])) ++begin;
+  while (end > begin && is_space(line[end - 1])) --end;
+  return {line.substr(begin, end - begin), int(begin) + 1};
+}
+
+std::vector<Field> split_fields(const std::string& line) {
+  std::vector<Field> fields;
+  std::size_t begin = 0;
+  for (;;) {
+    const std::size_t comma = line.find(',', begin);
+    const std::size_t end = comma == std::string::npos ? line.size() : comma;
+    fields.push_back(trimmed(line, begin, end));
+    if (comma == std::string::npos) break;
+    begin = comma + 1;
+  }
+  return fields;
+}
+
+std::string lower(std::string text) {
+  for (char& c : text) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return text;
+}
+
+enum class Parsed { ok, not_a_number, not_finite };
+
+// A plain decimal or exponent number ("0.0125", "-1.5e-3"), the whole text consumed. NaN and
+// infinities (spelled out, or a value too large for a double) are told apart for the message.
+Parsed parse_number(const std::string& text, double& value) {
+  const std::string l = lower(text);
+  const std::string body = !l.empty() && (l[0] == '+' || l[0] == '-') ? l.substr(1) : l;
+  if (body == "nan" || body == "inf" || body == "infinity") {
+    value = body == "nan" ? std::nan("") : (l[0] == '-' ? -HUGE_VAL : HUGE_VAL);
+    return Parsed::not_finite;
+  }
+  if (text.empty() || text.find_first_not_of("0123456789+-.eE") != std::string::npos) return Parsed::not_a_number;
+  char* end = nullptr;
+  value = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() + text.size()) return Parsed::not_a_number;
+  return std::isfinite(value) ? Parsed::ok : Parsed::not_finite;
+}
+
+// What a header column should have been, when it looks like the right quantity in other units.
+std::string unit_hint(const std::string& got, const std::string& expected) {
+  const auto stem = [](const std::string& name) { return lower(name.substr(0, name.find('_'))); };
+  if (got == expected || stem(got) != stem(expected) || expected == "buttons") return "";
+  if (expected == "t_s") return "time is in seconds (t_s)";
+  if (expected[0] == 'f') return "forces are in newtons (" + expected + ")";
+  return "positions are in metres (" + expected + ")";
+}
+
+class Parser {
+ public:
+  Parser(std::string path, const TraceOptions& options) : options_(options) { trace_.path = std::move(path); }
+
+  [[noreturn]] void fail(int line, int column, const std::string& key, const std::string& message) const {
+    throw InputError(SourcePlace{trace_.path, line, column}, key, message);
+  }
+
+  Trace run(const std::string& text) {
+    std::vector<std::string> lines;
+    {
+      std::istringstream in(text);
+      for (std::string line; std::getline(in, line);) {
+        if (!line.empty() && line.back() == '\r') line.pop_back();
+        lines.push_back(line);
+      }
+    }
+    const auto blank = [](const std::string& l) {
+      return std::all_of(l.begin(), l.end(), [](char c) { return is_space(c); });
+    };
+    if (std::all_of(lines.begin(), lines.end(), blank))
+      fail(0, 0, "", "the file is empty (expected the metadata block, the header " + kHeader + " and samples)");
+
+    // The metadata block and the header.
+    std::size_t i = 0;
+    for (; i < lines.size(); ++i) {
+      const std::string& line = lines[i];
+      if (blank(line)) continue;
+      if (line[line.find_first_not_of(" \t")] == '#') {
+        read_metadata(line, int(i) + 1);
+        continue;
+      }
+      break;
+    }
+    if (i == lines.size())
+      fail(0, 0, "header", "no header line: expected " + kHeader + " (or " + kForceHeader + ") after the metadata");
+    header_line_ = int(i) + 1;
+    read_header(lines[i]);
+    check_metadata();
+
+    // The samples.
+    for (++i; i < lines.size(); ++i) {
+      const std::string& line = lines[i];
+      if (blank(line) || line[line.find_first_not_of(" \t")] == '#') continue;
+      read_sample(line, int(i) + 1);
+    }
+    if (trace_.samples.empty()) fail(header_line_, 0, "samples", "no samples after the header");
+    check_spacing();
+    return std::move(trace_);
+  }
+
+ private:
+  void read_metadata(const std::string& line, int number) {
+    // "# key: value"; a '#' line of any other shape is a comment.
+    const std::size_t hash = line.find('#');
+    const std::size_t colon = line.find(':', hash);
+    if (colon == std::string::npos) return;
+    const Field key = trimmed(line, hash + 1, colon);
+    if (key.text.empty() || key.text.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_.-") !=
+                                std::string::npos)
+      return;
+    const Field value = trimmed(line, colon + 1, line.size());
+    const std::string name = "metadata." + key.text;
+    if (const auto seen = meta_lines_.find(key.text); seen != meta_lines_.end())
+      fail(number, key.column, name, "given twice (first on line " + std::to_string(seen->second.first) + ")");
+    meta_lines_[key.text] = {number, value.column};
+    trace_.metadata[key.text] = value.text;
+
+    if (key.text == "frame" && value.text != "libnifalcon")
+      fail(number, value.column, name,
+           "must be libnifalcon (the device frame as libnifalcon reports it: metres, x right, y up, z towards "
+           "the user) (got '" + value.text + "')");
+    if (key.text == "rate_hz") {
+      double rate = 0;
+      const Parsed p = parse_number(value.text, rate);
+      if (p == Parsed::not_a_number) fail(number, value.column, name, "expected a number, got '" + value.text + "'");
+      if (p == Parsed::not_finite) fail(number, value.column, name, "must be a finite number (got " + value.text + ")");
+      if (rate < kTraceMinRate_hz || rate > kTraceMaxRate_hz)
+        fail(number, value.column, name,
+             "must be between " + format_number(kTraceMinRate_hz) + " and " + format_number(kTraceMaxRate_hz) +
+                 " (got " + format_number(rate) + "): a sample rate near the Falcon's 1 kHz");
+      trace_.rate_hz = rate;
+    }
+    if (key.text == "device" && value.text.empty()) fail(number, value.column, name, "must not be empty");
+  }
+
+  void check_metadata() const {
+    for (const char* required : kRequired) {
+      if (meta_lines_.count(required)) continue;
+      std::string message = std::string("missing (required): the metadata block before the header needs a line '# ") +
+                            required + ": ...'";
+      // A near miss among the other keys ("rate", "Frame") is probably a misspelling.
+      const std::string* nearest = nullptr;
+      std::size_t best = 4;
+      for (const auto& [key, where] : meta_lines_) {
+        if (std::any_of(std::begin(kRequired), std::end(kRequired), [&](const char* r) { return key == r; })) continue;
+        if (const std::size_t d = edit_distance(lower(key), required); d < best) best = d, nearest = &key;
+      }
+      if (nearest)
+        message += "; line " + std::to_string(meta_lines_.at(*nearest).first) + " has '" + *nearest +
+                   "': did you mean '" + required + "'?";
+      fail(header_line_, 0, std::string("metadata.") + required, message);
+    }
+  }
+
+  void read_header(const std::string& line) {
+    const std::vector<Field> columns = split_fields(line);
+    std::string got;
+    for (const Field& c : columns) got += (got.empty() ? "" : ",") + c.text;
+    if (got == kHeader || got == kForceHeader) {
+      trace_.has_force = got == kForceHeader;
+      return;
+    }
+    const std::string expected = "expected the header " + kHeader + " or " + kForceHeader;
+    for (std::size_t c = 0; c < columns.size() && c < std::size(kColumns); ++c) {
+      const std::string hint = unit_hint(columns[c].text, kColumns[c]);
+      if (!hint.empty())
+        fail(header_line_, columns[c].column, "header",
+             "column " + std::to_string(c + 1) + " is '" + columns[c].text + "': " + hint + "; " + expected +
+                 " (got '" + got + "')");
+    }
+    int column = 1;
+    for (std::size_t c = 0; c < columns.size(); ++c)
+      if (c >= std::size(kColumns) || columns[c].text != kColumns[c]) {
+        column = columns[c].column;
+        break;
+      }
+    fail(header_line_, column, "header", expected + " (got '" + got + "')");
+  }
+
+  double number(const Field& field, int line, const char* key) const {
+    double value = 0;
+    switch (parse_number(field.text, value)) {
+      case Parsed::ok: return value;
+      case Parsed::not_finite:
+        fail(line, field.column, key, "must be a finite number (got " + field.text + ")");
+      case Parsed::not_a_number:
+        fail(line, field.column, key,
+             field.text.empty() ? std::string("expected a number, got an empty value")
+                                : "expected a number, got '" + field.text + "'");
+    }
+    return value;
+  }
+
+  void within(double value, double low, double high, const Field& field, int line, const char* key) const {
+    if (value >= low && value <= high) return;
+    fail(line, field.column, key,
+         format_number(value) + " m is outside the Falcon's workspace: must be between " + format_number(low) +
+             " and " + format_number(high) + " m (" + format_number(low * 1000) + " to " +
+             format_number(high * 1000) + " mm)");
+  }
+
+  void read_sample(const std::string& line, int number_) {
+    const std::vector<Field> f = split_fields(line);
+    const std::size_t want = trace_.has_force ? 8 : 5;
+    if (f.size() != want)
+      fail(number_, 1, "columns",
+           "expected " + std::to_string(want) + " values (" + (trace_.has_force ? kForceHeader : kHeader) + "), got " +
+               std::to_string(f.size()));
+    TraceSample s;
+    s.t_s = number(f[0], number_, "t_s");
+    if (!trace_.samples.empty() && !(s.t_s > trace_.samples.back().t_s))
+      fail(number_, f[0].column, "t_s",
+           "time must be strictly increasing: " + format_number(s.t_s) + " s is not after " +
+               format_number(trace_.samples.back().t_s) + " s on line " + std::to_string(lines_.back()));
+    s.x_m = number(f[1], number_, "x_m");
+    s.y_m = number(f[2], number_, "y_m");
+    s.z_m = number(f[3], number_, "z_m");
+    within(s.x_m, kFalconMinXY_m, kFalconMaxXY_m, f[1], number_, "x_m");
+    within(s.y_m, kFalconMinXY_m, kFalconMaxXY_m, f[2], number_, "y_m");
+    within(s.z_m, kFalconMinZ_m, kFalconMaxZ_m, f[3], number_, "z_m");
+
+    const std::string& b = f[4].text;
+    if (b.empty() || b.find_first_not_of("0123456789") != std::string::npos || b.size() > 2 || std::stoi(b) > 15) {
+      double ignored;
+      if (b.empty() || parse_number(b, ignored) == Parsed::not_a_number)
+        fail(number_, f[4].column, "buttons",
+             "expected an integer, got " + (b.empty() ? std::string("an empty value") : "'" + b + "'"));
+      fail(number_, f[4].column, "buttons",
+           "must be an integer between 0 and 15, the bitmask of the four buttons 0x1..0x8 (got " + b + ")");
+    }
+    s.buttons = std::uint8_t(std::stoi(b));
+
+    if (trace_.has_force) {
+      s.fx_N = number(f[5], number_, "fx_N");
+      s.fy_N = number(f[6], number_, "fy_N");
+      s.fz_N = number(f[7], number_, "fz_N");
+      const double magnitude = std::sqrt(s.fx_N * s.fx_N + s.fy_N * s.fy_N + s.fz_N * s.fz_N);
+      if (magnitude > kFalconMaxForce_N)
+        fail(number_, f[5].column, "force",
+             "the force (" + f[5].text + ", " + f[6].text + ", " + f[7].text + ") N has magnitude " +
+                 rounded(magnitude) + " N, over the Falcon's " + format_number(kFalconMaxForce_N) + " N maximum");
+    }
+    trace_.samples.push_back(s);
+    lines_.push_back(number_);
+  }
+
+  // The median interval must match rate_hz; a longer interval is a gap, refused or repaired.
+  void check_spacing() {
+    const std::vector<TraceSample>& s = trace_.samples;
+    const double period = 1.0 / trace_.rate_hz;
+    const auto rate_line = meta_lines_.at("rate_hz");
+    if (s.size() >= 2) {
+      std::vector<double> intervals;
+      for (std::size_t k = 1; k < s.size(); ++k) intervals.push_back(s[k].t_s - s[k - 1].t_s);
+      std::nth_element(intervals.begin(), intervals.begin() + intervals.size() / 2, intervals.end());
+      double median = intervals[intervals.size() / 2];
+      if (intervals.size() % 2 == 0)
+        median = (median + *std::max_element(intervals.begin(), intervals.begin() + intervals.size() / 2)) / 2;
+      if (std::abs(median - period) > 0.1 * period)
+        fail(rate_line.first, rate_line.second, "metadata.rate_hz",
+             "the samples are " + rounded(1.0 / median) + " Hz apart (median interval " + rounded(median * 1000) +
+                 " ms), not the " + format_number(trace_.rate_hz) + " Hz the header states");
+    }
+
+    std::vector<TraceSample> repaired;
+    repaired.reserve(s.size());
+    for (std::size_t k = 0; k < s.size(); ++k) {
+      if (k > 0) {
+        const TraceSample& a = s[k - 1];
+        const TraceSample& b = s[k];
+        const double gap = b.t_s - a.t_s;
+        if (gap > 1.5 * period) {
+          const std::string what = "a " + rounded(gap * 1000) + " ms dropout after t = " + fixed(a.t_s, 4) + " s";
+          if (!(options_.max_repair_gap_s > 0 && gap <= options_.max_repair_gap_s))
+            fail(lines_[k], 1, "t_s",
+                 what + " (between line " + std::to_string(lines_[k - 1]) + " and line " + std::to_string(lines_[k]) +
+                     "): the samples must be at most 1.5 intervals (" + rounded(1.5 * period * 1000) +
+                     " ms) apart at " + format_number(trace_.rate_hz) + " Hz" +
+                     (options_.max_repair_gap_s > 0
+                          ? "; repairs are allowed up to " + rounded(options_.max_repair_gap_s * 1000) + " ms"
+                          : std::string()));
+          const long missing = std::max(1L, std::lround(gap / period)) - 1;
+          long filled = 0;
+          for (long m = 1; m <= missing; ++m) {
+            const double t = a.t_s + double(m) * period;
+            if (!(t < b.t_s)) break;
+            const double u = (t - a.t_s) / gap;
+            TraceSample f;
+            f.t_s = t;
+            f.x_m = a.x_m + u * (b.x_m - a.x_m);
+            f.y_m = a.y_m + u * (b.y_m - a.y_m);
+            f.z_m = a.z_m + u * (b.z_m - a.z_m);
+            f.buttons = a.buttons;
+            f.fx_N = a.fx_N + u * (b.fx_N - a.fx_N);
+            f.fy_N = a.fy_N + u * (b.fy_N - a.fy_N);
+            f.fz_N = a.fz_N + u * (b.fz_N - a.fz_N);
+            repaired.push_back(f);
+            ++filled;
+          }
+          trace_.repairs.push_back(trace_.path + ":" + std::to_string(lines_[k - 1]) + ": " + what + " filled with " +
+                                   std::to_string(filled) + " interpolated sample" + (filled == 1 ? "" : "s"));
+        }
+      }
+      repaired.push_back(s[k]);
+    }
+    trace_.samples = std::move(repaired);
+  }
+
+  TraceOptions options_;
+  Trace trace_;
+  std::map<std::string, std::pair<int, int>> meta_lines_;  // key -> (line, value column)
+  std::vector<int> lines_;                                 // each sample's line
+  int header_line_ = 0;
+};
+
+}  // namespace
+
+Trace parse_trace(const std::string& text, const std::string& path, const TraceOptions& options) {
+  return Parser(path, options).run(text);
+}
+
+Trace load_trace(const std::string& path, const TraceOptions& options) {
+  const SourcePlace file{path, 0, 0};
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw InputError(file, "", "cannot read trace file: it is a folder");
+  errno = 0;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(file, "", std::string("cannot read trace file: ") + std::strerror(errno ? errno : ENOENT));
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_trace(text.str(), path, options);
+}
+
+}  // namespace bleedsim

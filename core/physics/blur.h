@@ -1,0 +1,76 @@
+#pragma once
+// Blur (the report's §2.2.2.5, after Rastertek): the film of blood is downsampled by a factor
+// (1, 2 or 4), blurred by a separable Gaussian — a horizontal pass, then a vertical one — and
+// upsampled back to the panel's pixels, so the particles' film reads as a soft layer.
+//
+// Every pass is a gather: each output element reads its inputs in a fixed order and sums them
+// left to right, so both backends give the same bits. Edges clamp: a tap past the edge reads the
+// edge pixel. The weights are computed once on the host and uploaded.
+#include <cmath>
+#include <cstddef>
+
+#include "core/physics/hd.h"
+
+namespace bleedsim {
+
+enum class BlurPhase { downsample, horizontal, vertical, upsample };
+
+struct BlurArgs {
+  int width;            // the panel, in pixels
+  int height;
+  int factor;           // downsample factor: 1, 2 or 4
+  int low_width;        // ⌈width / factor⌉
+  int low_height;
+  int radius;           // taps either side, at the downsampled resolution
+  const float* weights; // 2·radius + 1, summing to 1
+  const float* film;    // width × height: splat/thickness
+  float* low;           // low_width × low_height: downsampled, then blurred vertically
+  float* across;        // low_width × low_height: blurred horizontally
+  float* blurred;       // width × height: the result
+};
+
+BLEEDSIM_HD inline int clamp_index(int v, int size) { return v < 0 ? 0 : (v >= size ? size - 1 : v); }
+
+// Downsample: the mean of the factor × factor block (the part of it inside the panel, at an edge).
+BLEEDSIM_HD inline float block_mean(const BlurArgs& a, int i, int j) {
+  float sum = 0.0f;
+  int count = 0;
+  for (int y = j * a.factor; y < (j + 1) * a.factor && y < a.height; ++y)
+    for (int x = i * a.factor; x < (i + 1) * a.factor && x < a.width; ++x, ++count)
+      sum += a.film[std::size_t(y) * a.width + x];
+  return sum / float(count);
+}
+
+// One pass of the separable Gaussian at (i, j): along the row, or down the column.
+BLEEDSIM_HD inline float gaussian_tap_sum(const BlurArgs& a, const float* in, int i, int j, bool horizontal) {
+  float sum = 0.0f;
+  for (int k = -a.radius; k <= a.radius; ++k) {
+    const int x = horizontal ? clamp_index(i + k, a.low_width) : i;
+    const int y = horizontal ? j : clamp_index(j + k, a.low_height);
+    sum += a.weights[k + a.radius] * in[std::size_t(y) * a.low_width + x];
+  }
+  return sum;
+}
+
+// Upsample: bilinear between the four nearest downsampled pixel centres (clamped at the edges).
+BLEEDSIM_HD inline float bilinear_up(const BlurArgs& a, int i, int j) {
+  const float f = float(a.factor);
+  const float x = (float(i) + 0.5f) / f - 0.5f;
+  const float y = (float(j) + 0.5f) / f - 0.5f;
+  const float x0f = floorf(x), y0f = floorf(y);
+  const float fx = x - x0f, fy = y - y0f;
+  const int x0 = clamp_index(int(x0f), a.low_width), x1 = clamp_index(int(x0f) + 1, a.low_width);
+  const int y0 = clamp_index(int(y0f), a.low_height), y1 = clamp_index(int(y0f) + 1, a.low_height);
+  const float* row0 = a.low + std::size_t(y0) * a.low_width;
+  const float* row1 = a.low + std::size_t(y1) * a.low_width;
+  const float top = row0[x0] + (row0[x1] - row0[x0]) * fx;
+  const float bottom = row1[x0] + (row1[x1] - row1[x0]) * fx;
+  return top + (bottom - top) * fy;
+}
+
+// The stage's twins, one pass at a time: downsample film → low, horizontal low → across,
+// vertical across → low, upsample low → blurred.
+void blur_cpu(BlurPhase phase, const BlurArgs& args, int threads);
+void blur_cuda(BlurPhase phase, const BlurArgs& args);
+
+}  // namespace bleedsim

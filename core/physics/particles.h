@@ -1,0 +1,294 @@
+#pragma once
+// Particle blood flow (report §2.2.2): blood leaves a cut as particles, runs down the panel under
+// gravity, pushes its neighbours aside and piles up at the bottom, then fades and is gone.
+//
+// One step, in the order a backend runs it (docs/particles.md has the model and its limits):
+//   emit       new particles at the bleeding cuts, into the ring buffer (oldest overwritten)
+//   bin        each live particle's grid cell; a stable sort of (cell, slot); each cell's range
+//   collide    contact acceleration from the neighbours in the 3 × 3 cells around, in fixed order
+//   integrate  gravity, contacts and drag (semi-implicit Euler), panel bounds, age
+// Once per frame the splat stage (core/physics/splat.h) turns the live particles into a film of blood.
+//
+// Every update reads the old state and writes a new one (collide reads sorted copies, integrate
+// touches only its own slot), sums run in a fixed order, and there are no float atomics: the CPU
+// reference and the CUDA kernels give the same bits.
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+
+#include "core/physics/counter_hash.h"
+#include "core/physics/hd.h"
+#include "core/physics/pixel_grid.h"
+
+namespace bleedsim {
+
+// The model's constants for one run, as the floats both backends compute with (made once on
+// the host by make_particle_model(), core/effects/particle_model.h).
+struct ParticleModel {
+  float radius_mm;
+  float diameter_mm;
+  float diameter_sq;       // diameter², the contact test
+  float stiffness;         // 1/s²: contact acceleration per mm of overlap
+  float damping;           // 1/s: contact acceleration per mm/s of approach speed
+  float gravity_x;         // mm/s², along the panel (y points down)
+  float gravity_y;
+  float dt_s;              // one sub-step
+  float drag_divisor;      // 1 + drag·dt: drag taken implicitly, so it never destabilises
+  float max_speed;         // mm/s
+  float max_speed_sq;
+  float min_x, max_x;      // where a centre may be: the panel less one radius
+  float min_y, max_y;
+  float cell_mm;           // grid cell edge, ≥ the diameter
+  int cells_x;
+  int cells_y;
+  int max_per_cell;        // neighbours visited per cell, at most (bounds the work in a crowd)
+  int key_bits;            // bits of a cell key; the sentinel `cells_x·cells_y` marks no particle
+  std::uint32_t lifetime_steps;
+  std::uint32_t fade_steps;
+  float jitter_mm;         // emission: position jitter, ± this in x and y
+  float velocity_x;        // emission: initial velocity, mm/s ...
+  float velocity_y;
+  float velocity_jitter;   // ... ± this in x and y
+  std::uint64_t seed;
+};
+
+// A slot whose age is at least the lifetime holds no particle; a slot never written holds this.
+constexpr std::uint32_t kNeverUsed = 0xffffffffu;
+
+// The ring buffer (capacity slots; a particle with id n lives in slot n mod capacity) and the
+// scratch a step needs. Positions and velocities are (x, y) pairs.
+struct ParticleArrays {
+  int capacity;
+  float* position;           // mm
+  float* velocity;           // mm/s
+  std::uint32_t* age;        // steps lived
+  float* acceleration;       // contact acceleration, collide → integrate
+  std::uint32_t* cell_key;   // per slot
+  std::uint32_t* slot_index; // 0, 1, 2, …: the values the sort carries
+  std::uint32_t* sorted_key;
+  std::uint32_t* sorted_slot;
+  float* sorted_position;
+  float* sorted_velocity;
+  std::uint32_t* cell_start;  // per cell: [start, end) in sorted order; empty cells start = end
+  std::uint32_t* cell_end;
+  void* sort_scratch;         // the CUDA sort's temporary storage (none on the CPU)
+  std::size_t sort_scratch_bytes;
+};
+
+// One cut's new particles in one step: ids first_id … first_id + count − 1, which are new
+// particles first_new … of this step.
+struct Emitter {
+  float x_mm;
+  float y_mm;
+  std::uint64_t first_id;
+  std::uint32_t first_new;
+  std::uint32_t count;
+};
+
+enum class ParticlePhase { emit, bin, collide, integrate };
+
+struct ParticleArgs {
+  ParticleModel model;
+  ParticleArrays arrays;
+  const Emitter* emitters;  // emit: sorted by first_new
+  int emitter_count;
+  int new_count;            // emit: at most capacity
+  std::uint64_t step;       // emit: the step number, for the jitter
+  // The live particles, ids [oldest alive, emitted), fill live_count slots from first_live_slot
+  // on, wrapping: every other slot is empty. Loops over particles need visit only these.
+  std::uint32_t first_live_slot;
+  int live_count;
+};
+
+BLEEDSIM_HD inline bool is_alive(const ParticleModel& m, std::uint32_t age) {
+  return age < m.lifetime_steps;
+}
+
+// The t-th live slot, t < live_count.
+BLEEDSIM_HD inline int live_slot(const ParticleArgs& a, int t) {
+  return int((std::uint64_t(a.first_live_slot) + std::uint64_t(t)) % std::uint64_t(a.arrays.capacity));
+}
+
+BLEEDSIM_HD inline float clamp_float(float v, float low, float high) {
+  return fminf(fmaxf(v, low), high);
+}
+
+// ---- emit --------------------------------------------------------------------------------------
+
+// A jittered position past a bound is mirrored back inside it, not clamped onto it: clamping would
+// stack a cut's particles on the wall line, where contacts with each other point along the wall
+// and nothing can push them off it.
+BLEEDSIM_HD inline float reflect_inside(float v, float low, float high) {
+  if (v < low) v = low + (low - v);
+  if (v > high) v = high - (v - high);
+  return clamp_float(v, low, high);
+}
+
+// New particle t of this step: at its cut, jittered by the counter hash of (seed, id, step).
+BLEEDSIM_HD inline void emit_particle(const ParticleArgs& a, int t) {
+  const ParticleModel& m = a.model;
+  int e = 0;
+  while (e + 1 < a.emitter_count && a.emitters[e + 1].first_new <= std::uint32_t(t)) ++e;
+  const Emitter& from = a.emitters[e];
+  const std::uint64_t id = from.first_id + (std::uint32_t(t) - from.first_new);
+  const std::size_t slot = std::size_t(id % std::uint64_t(a.arrays.capacity));
+  const auto jitter = [&](std::uint32_t stream) {
+    return signed_unit(counter_hash(m.seed, id, a.step, stream));
+  };
+  a.arrays.position[2 * slot] = reflect_inside(from.x_mm + m.jitter_mm * jitter(0), m.min_x, m.max_x);
+  a.arrays.position[2 * slot + 1] = reflect_inside(from.y_mm + m.jitter_mm * jitter(1), m.min_y, m.max_y);
+  a.arrays.velocity[2 * slot] = m.velocity_x + m.velocity_jitter * jitter(2);
+  a.arrays.velocity[2 * slot + 1] = m.velocity_y + m.velocity_jitter * jitter(3);
+  a.arrays.age[slot] = 0;
+}
+
+// ---- bin ---------------------------------------------------------------------------------------
+
+BLEEDSIM_HD inline std::uint32_t sentinel_key(const ParticleModel& m) {
+  return std::uint32_t(m.cells_x) * std::uint32_t(m.cells_y);
+}
+
+// Clamped before the conversion: float→int of out-of-range values differs between CPU and GPU.
+BLEEDSIM_HD inline int cell_coordinate(float v_mm, float cell_mm, int cells) {
+  return static_cast<int>(clamp_float(floorf(v_mm / cell_mm), 0.0f, static_cast<float>(cells - 1)));
+}
+
+BLEEDSIM_HD inline std::uint32_t cell_key_of(const ParticleArrays& p, const ParticleModel& m, int slot) {
+  if (!is_alive(m, p.age[slot])) return sentinel_key(m);
+  const int cx = cell_coordinate(p.position[2 * slot], m.cell_mm, m.cells_x);
+  const int cy = cell_coordinate(p.position[2 * slot + 1], m.cell_mm, m.cells_y);
+  return std::uint32_t(cy) * std::uint32_t(m.cells_x) + std::uint32_t(cx);
+}
+
+// Sorted position i opens or closes its cell's range when its key differs from its neighbour's.
+BLEEDSIM_HD inline void mark_cell_range(const ParticleArrays& p, const ParticleModel& m, int i) {
+  const std::uint32_t key = p.sorted_key[i];
+  if (key == sentinel_key(m)) return;
+  if (i == 0 || p.sorted_key[i - 1] != key) p.cell_start[key] = std::uint32_t(i);
+  if (i == p.capacity - 1 || p.sorted_key[i + 1] != key) p.cell_end[key] = std::uint32_t(i + 1);
+}
+
+// The sorted copies collide reads, so no thread reads a slot another thread is writing.
+BLEEDSIM_HD inline void gather_sorted(const ParticleArrays& p, int i) {
+  const std::uint32_t slot = p.sorted_slot[i];
+  p.sorted_position[2 * i] = p.position[2 * slot];
+  p.sorted_position[2 * i + 1] = p.position[2 * slot + 1];
+  p.sorted_velocity[2 * i] = p.velocity[2 * slot];
+  p.sorted_velocity[2 * i + 1] = p.velocity[2 * slot + 1];
+}
+
+// ---- collide -----------------------------------------------------------------------------------
+
+// Particles at exactly the same point have no direction between them: push them apart along one
+// of eight directions (3-4-5 triangles, so no table and no trigonometry) chosen by the pair, with
+// opposite signs for the two, so the pair separates as any other.
+BLEEDSIM_HD inline void coincident_direction(std::uint32_t slot, std::uint32_t other, float* nx, float* ny) {
+  const std::uint32_t low = slot < other ? slot : other;
+  const std::uint32_t high = slot < other ? other : slot;
+  const std::uint32_t h = mix32(low * 0x9e3779b9U ^ mix32(high));
+  const float a = (h & 1u) ? 0.6f : 0.8f;
+  const float b = (h & 1u) ? 0.8f : 0.6f;
+  const float sign = slot < other ? 1.0f : -1.0f;
+  *nx = sign * ((h & 2u) ? -a : a);
+  *ny = sign * ((h & 4u) ? -b : b);
+}
+
+// Linear spring-dashpot along the line of centres (per unit mass): the spring pushes the two
+// apart in proportion to their overlap, the dashpot resists their approach speed.
+BLEEDSIM_HD inline void add_contact(const ParticleModel& m, float px, float py, float vx, float vy,
+                                    std::uint32_t slot, float qx, float qy, float wx, float wy,
+                                    std::uint32_t other, float* ax, float* ay) {
+  const float dx = px - qx;
+  const float dy = py - qy;
+  const float r2 = dx * dx + dy * dy;
+  if (r2 >= m.diameter_sq) return;
+  float nx, ny, r;
+  if (r2 > 0.0f) {
+    r = sqrtf(r2);
+    nx = dx / r;
+    ny = dy / r;
+  } else {
+    r = 0.0f;
+    coincident_direction(slot, other, &nx, &ny);
+  }
+  const float approach = (vx - wx) * nx + (vy - wy) * ny;
+  const float push = m.stiffness * (m.diameter_mm - r) - m.damping * approach;
+  *ax += push * nx;
+  *ay += push * ny;
+}
+
+// Contact acceleration of the particle at sorted position i: the 3 × 3 cells around its own, row
+// by row, each cell's particles in sorted order, at most max_per_cell of them.
+BLEEDSIM_HD inline void collide_particle(const ParticleArrays& p, const ParticleModel& m, int i) {
+  const std::uint32_t key = p.sorted_key[i];
+  if (key == sentinel_key(m)) return;
+  const int cx = int(key % std::uint32_t(m.cells_x));
+  const int cy = int(key / std::uint32_t(m.cells_x));
+  const std::uint32_t slot = p.sorted_slot[i];
+  const float px = p.sorted_position[2 * i], py = p.sorted_position[2 * i + 1];
+  const float vx = p.sorted_velocity[2 * i], vy = p.sorted_velocity[2 * i + 1];
+  float ax = 0.0f, ay = 0.0f;
+  for (int ny = cy - 1; ny <= cy + 1; ++ny) {
+    if (ny < 0 || ny >= m.cells_y) continue;
+    for (int nx = cx - 1; nx <= cx + 1; ++nx) {
+      if (nx < 0 || nx >= m.cells_x) continue;
+      const std::uint32_t cell = std::uint32_t(ny) * std::uint32_t(m.cells_x) + std::uint32_t(nx);
+      const std::uint32_t start = p.cell_start[cell];
+      const std::uint32_t end = p.cell_end[cell];
+      const std::uint32_t last = end - start > std::uint32_t(m.max_per_cell) ? start + m.max_per_cell : end;
+      for (std::uint32_t j = start; j < last; ++j) {
+        if (j == std::uint32_t(i)) continue;
+        add_contact(m, px, py, vx, vy, slot, p.sorted_position[2 * j], p.sorted_position[2 * j + 1],
+                    p.sorted_velocity[2 * j], p.sorted_velocity[2 * j + 1], p.sorted_slot[j], &ax, &ay);
+      }
+    }
+  }
+  p.acceleration[2 * slot] = ax;
+  p.acceleration[2 * slot + 1] = ay;
+}
+
+// ---- integrate ---------------------------------------------------------------------------------
+
+// Semi-implicit Euler: the new velocity from gravity and contacts, drag taken implicitly, capped
+// at the speed limit (a pair closing faster than about √(2k)·d would pass through each other, and
+// slow blood never moves that fast); the new position from the new velocity. The panel's edges
+// stop a particle and take the speed it had into them (blood does not bounce).
+BLEEDSIM_HD inline void integrate_particle(const ParticleArrays& p, const ParticleModel& m, int slot) {
+  const std::uint32_t age = p.age[slot];
+  if (!is_alive(m, age)) return;
+  float vx = (p.velocity[2 * slot] + m.dt_s * (m.gravity_x + p.acceleration[2 * slot])) / m.drag_divisor;
+  float vy = (p.velocity[2 * slot + 1] + m.dt_s * (m.gravity_y + p.acceleration[2 * slot + 1])) / m.drag_divisor;
+  const float speed_sq = vx * vx + vy * vy;
+  if (speed_sq > m.max_speed_sq) {
+    const float scale = m.max_speed / sqrtf(speed_sq);
+    vx *= scale;
+    vy *= scale;
+  }
+  float x = p.position[2 * slot] + m.dt_s * vx;
+  float y = p.position[2 * slot + 1] + m.dt_s * vy;
+  if (x < m.min_x) { x = m.min_x; vx = fmaxf(vx, 0.0f); }
+  if (x > m.max_x) { x = m.max_x; vx = fminf(vx, 0.0f); }
+  if (y < m.min_y) { y = m.min_y; vy = fmaxf(vy, 0.0f); }
+  if (y > m.max_y) { y = m.max_y; vy = fminf(vy, 0.0f); }
+  p.position[2 * slot] = x;
+  p.position[2 * slot + 1] = y;
+  p.velocity[2 * slot] = vx;
+  p.velocity[2 * slot + 1] = vy;
+  p.age[slot] = age + 1;
+}
+
+// ---- fade --------------------------------------------------------------------------------------
+
+// How much of a particle is still there over its last fade_steps: from 1 down to 1/fade_steps,
+// never 0 while it lives, so it fades out instead of popping.
+BLEEDSIM_HD inline float fade_alpha(const ParticleModel& m, std::uint32_t age) {
+  return fminf(1.0f, float(m.lifetime_steps - age) / float(m.fade_steps));
+}
+
+// The twins: one phase of a step over host memory (CPU reference) or device memory (CUDA).
+void particles_cpu(ParticlePhase phase, const ParticleArgs& args, int threads);
+void particles_cuda(ParticlePhase phase, const ParticleArgs& args);
+// Bytes of temporary storage the CUDA sort needs for `capacity` keys of `key_bits` bits.
+std::size_t particle_sort_scratch_cuda(int capacity, int key_bits);
+
+}  // namespace bleedsim

@@ -1,0 +1,22 @@
+#pragma once
+#include "core/physics/hd.h"
+
+namespace bleedsim {
+
+// The panel as pixels: x to the right, y downwards, origin at the top-left corner.
+// Pixel (i, j) covers [i, i+1) × [j, j+1) in pixel units; its centre is at (i + ½, j + ½).
+struct PixelGrid {
+  int width = 0;
+  int height = 0;
+  float mm_per_px_x = 1.0f;
+  float mm_per_px_y = 1.0f;
+};
+
+BLEEDSIM_HD inline float pixel_centre_x_mm(const PixelGrid& g, int i) {
+  return (static_cast<float>(i) + 0.5f) * g.mm_per_px_x;
+}
+BLEEDSIM_HD inline float pixel_centre_y_mm(const PixelGrid& g, int j) {
+  return (static_cast<float>(j) + 0.5f) * g.mm_per_px_y;
+}
+
+}  // namespace bleedsim

@@ -1,0 +1,74 @@
+#pragma once
+// Texture-based radial spread of blood from cut points (report §2.2.1).
+//
+// A cut of radius r leaves, at distance d from its centre, a final stain ((r − d)/r)^6: 1 at the
+// centre, a soft edge falling to 0 at r. The stain grows towards that final value over time; all
+// pixels of one cut grow in proportion (as in the report, where every pixel's increment is its
+// final value times a common factor), so a cut's state at any moment is one amplitude in [0, 1]
+// and the visible edge, where the stain crosses a threshold, moves outwards as it grows.
+// Several stains combine as independent absorbers: the light left after all of them is the
+// product of what each lets through, stain = 1 − Π(1 − sᵢ), taken in cut order.
+#include <algorithm>
+#include <cmath>
+
+#include "core/physics/hd.h"
+#include "core/physics/pixel_grid.h"
+
+namespace bleedsim {
+
+// One cut as the spread sees it in one frame (mm; amplitude from cut_amplitude()).
+struct SpreadCut {
+  float x_mm;
+  float y_mm;
+  float radius_mm;
+  float amplitude;
+};
+
+// Integer power by multiplication: powf differs between the host's libm and the device.
+BLEEDSIM_HD inline float sixth_power(float q) {
+  const float q2 = q * q;
+  const float q3 = q2 * q;
+  return q3 * q3;
+}
+
+// The report's final stain at distance d from the centre of a cut of radius r.
+BLEEDSIM_HD inline float stain_profile(float d, float r) {
+  return d < r ? sixth_power((r - d) / r) : 0.0f;
+}
+
+BLEEDSIM_HD inline float cut_stain(const SpreadCut& cut, float x_mm, float y_mm) {
+  const float dx = x_mm - cut.x_mm;
+  const float dy = y_mm - cut.y_mm;
+  // Outside the cut's bounding square the stain is 0: skip the square root.
+  if (fabsf(dx) >= cut.radius_mm || fabsf(dy) >= cut.radius_mm) return 0.0f;
+  return stain_profile(sqrtf(dx * dx + dy * dy), cut.radius_mm) * cut.amplitude;
+}
+
+// The combined stain of every cut at pixel (i, j).
+BLEEDSIM_HD inline float spread_stain(const SpreadCut* cuts, int cut_count, const PixelGrid& grid,
+                                      int i, int j) {
+  const float x = pixel_centre_x_mm(grid, i);
+  const float y = pixel_centre_y_mm(grid, j);
+  float light_left = 1.0f;
+  for (int c = 0; c < cut_count; ++c) light_left *= 1.0f - cut_stain(cuts[c], x, y);
+  return 1.0f - light_left;
+}
+
+// How far a cut's stain has grown at time t: 0 before it starts, then linear at growth_per_s
+// (fraction of the final stain per second) until it is full. Host only: computed once per cut and
+// frame, in double, and handed to both backends as the same float.
+inline float cut_amplitude(double start_s, double growth_per_s, double t_s) {
+  return static_cast<float>(std::clamp((t_s - start_s) * growth_per_s, 0.0, 1.0));
+}
+
+// The stage's twins: the CPU reference over host memory, the CUDA kernel over device memory.
+struct SpreadArgs {
+  const SpreadCut* cuts;
+  int cut_count;
+  PixelGrid grid;
+  float* stain;  // grid.width × grid.height, row-major
+};
+void spread_cpu(const SpreadArgs& args, int threads);
+void spread_cuda(const SpreadArgs& args);
+
+}  // namespace bleedsim

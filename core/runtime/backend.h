@@ -1,0 +1,87 @@
+#pragma once
+// A backend is where the physics runs: the CPU reference (always) or CUDA (when built and a device
+// is present). It owns memory and runs stage twins; it holds no formulas, which live in core/.
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+
+#include "core/physics/blend.h"
+#include "core/physics/blur.h"
+#include "core/runtime/buffer.h"
+#include "core/physics/particles.h"
+#include "core/physics/splat.h"
+#include "core/physics/spread.h"
+
+namespace bleedsim {
+
+enum class BackendKind { cpu, cuda };
+const char* to_string(BackendKind kind);
+
+class Backend {
+ public:
+  virtual ~Backend() = default;
+  virtual BackendKind kind() const = 0;
+  // What it runs on, for people: "cpu (8 threads)", "NVIDIA H100 80GB HBM3 (sm_90)".
+  virtual std::string device_name() const = 0;
+
+  Buffer allocate(std::size_t bytes);
+  virtual void upload(void* dst, const void* src, std::size_t bytes) = 0;
+  virtual void download(void* dst, const void* src, std::size_t bytes) = 0;
+  virtual void synchronize() = 0;
+  // Memory it can still allocate, in bytes.
+  virtual std::size_t memory_available() const = 0;
+  // Milliseconds `work` takes as the backend sees it: the wall clock on the CPU, CUDA events
+  // around the launches on the device. For benchmarks.
+  virtual double time_ms(const std::function<void()>& work) = 0;
+
+  // Stage twins (the work, counted per stage so a pipeline can prove what it ran).
+  void spread(const SpreadArgs& args);
+  void blend(const BlendArgs& args);
+  void particles(ParticlePhase phase, const ParticleArgs& args);  // counted as "particles"
+  void splat(const SplatArgs& args);
+  void blur(BlurPhase phase, const BlurArgs& args);  // counted as "blur"
+  // Temporary storage the particle sort needs here (none on the CPU, CUB's on the GPU).
+  virtual std::size_t particle_sort_scratch_bytes(int capacity, int key_bits) const = 0;
+
+  std::uint64_t launches(const std::string& stage) const;
+  std::size_t bytes_in_use() const { return *bytes_in_use_; }
+
+ protected:
+  virtual void* allocate_raw(std::size_t bytes) = 0;
+  virtual void release_raw(void* data) = 0;
+  virtual void run_spread(const SpreadArgs& args) = 0;
+  virtual void run_blend(const BlendArgs& args) = 0;
+  virtual void run_particles(ParticlePhase phase, const ParticleArgs& args) = 0;
+  virtual void run_splat(const SplatArgs& args) = 0;
+  virtual void run_blur(BlurPhase phase, const BlurArgs& args) = 0;
+
+ private:
+  std::map<std::string, std::uint64_t> launches_;
+  // Shared with the buffers' release, so a buffer that outlives accounting cannot write freed memory.
+  std::shared_ptr<std::size_t> bytes_in_use_ = std::make_shared<std::size_t>(0);
+};
+
+// Which backend a run asks for; "auto" takes CUDA when a device is present.
+struct BackendChoice {
+  enum class Want { automatic, cpu, cuda } want = Want::automatic;
+  int cpu_threads = 0;  // 0: one per hardware thread
+};
+
+struct SelectedBackend {
+  std::unique_ptr<Backend> backend;
+  std::string why;  // e.g. "auto: no CUDA device (cudaErrorNoDevice)", shown to the user
+};
+
+// Throws std::runtime_error when "cuda" is asked for and cannot be had.
+SelectedBackend select_backend(const BackendChoice& choice);
+
+// Implemented by reference_cpu/ and kernels/ (kernels/no_cuda.cpp in a build without nvcc).
+std::unique_ptr<Backend> make_cpu_backend(int threads);
+std::unique_ptr<Backend> make_cuda_backend();
+// True when this build has the CUDA backend and a usable device; otherwise says why not.
+bool cuda_device_available(std::string* why_not);
+
+}  // namespace bleedsim

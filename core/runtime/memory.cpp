@@ -1,0 +1,78 @@
+#include "core/runtime/memory.h"
+
+#include <sys/resource.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <string>
+
+namespace bleedsim {
+namespace {
+
+constexpr std::size_t kUnknown = std::numeric_limits<std::size_t>::max();
+
+// A "Key:   123 kB" line of a /proc file, in bytes.
+std::size_t proc_kib_field(const char* file, const std::string& key) {
+  std::ifstream in(file);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.compare(0, key.size(), key) != 0) continue;
+    std::istringstream fields(line.substr(key.size()));
+    std::size_t kib = 0;
+    if (fields >> kib) return kib * 1024;
+  }
+  return kUnknown;
+}
+
+std::size_t read_number(const char* file) {
+  std::ifstream in(file);
+  std::size_t value = 0;
+  return (in >> value) ? value : kUnknown;  // "max" reads as no number: no limit
+}
+
+std::size_t cgroup_room() {
+  const std::size_t limit = read_number("/sys/fs/cgroup/memory.max");
+  const std::size_t used = read_number("/sys/fs/cgroup/memory.current");
+  if (limit == kUnknown || used == kUnknown) return kUnknown;
+  return limit > used ? limit - used : 0;
+}
+
+std::size_t address_space_room() {
+  rlimit limit{};
+  if (getrlimit(RLIMIT_AS, &limit) != 0 || limit.rlim_cur == RLIM_INFINITY) return kUnknown;
+  const std::size_t used = proc_kib_field("/proc/self/status", "VmSize:");
+  if (used == kUnknown) return limit.rlim_cur;
+  return limit.rlim_cur > used ? limit.rlim_cur - used : 0;
+}
+
+}  // namespace
+
+std::size_t available_host_memory() {
+  return std::min({proc_kib_field("/proc/meminfo", "MemAvailable:"), cgroup_room(),
+                   address_space_room()});
+}
+
+void require_room(const Scene& scene, std::size_t need, std::size_t room, const std::string& memory_kind) {
+  if (need <= room) return;
+  throw InputError(scene.place_of("scene.width_px"), "scene.width_px",
+                   "a " + std::to_string(scene.domain.width_px) + " x " +
+                       std::to_string(scene.domain.height_px) + " px scene needs " + human_bytes(double(need)) +
+                       " of " + memory_kind + " memory, but only " + human_bytes(double(room)) + " is available");
+}
+
+std::string human_bytes(double bytes) {
+  const char* units[] = {"B", "KiB", "MiB", "GiB", "TiB"};
+  int unit = 0;
+  while (bytes >= 1024.0 && unit < 4) {
+    bytes /= 1024.0;
+    ++unit;
+  }
+  char text[32];
+  std::snprintf(text, sizeof text, unit == 0 ? "%.0f %s" : "%.2f %s", bytes, units[unit]);
+  return text;
+}
+
+}  // namespace bleedsim

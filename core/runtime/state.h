@@ -1,0 +1,51 @@
+#pragma once
+// State: everything that changes as a run goes (MuJoCo's "data"). Stages read the Scene and the
+// old State and write the new State; the fields live on the backend.
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <string>
+#include <vector>
+
+#include "core/runtime/buffer.h"
+#include "core/runtime/scene.h"
+
+namespace bleedsim {
+
+enum class ElementType { u8, u32, u64, f32 };
+std::size_t element_size(ElementType type);
+
+// What a quantity is: its name, element type and shape. Writers and readers need only this.
+// Most are images (height × width pixels); some are per-element arrays (one row of `width`
+// elements: a particle per ring-buffer slot, or a handful of counters).
+struct FieldLayout {
+  std::string name;  // "frame", "spread/stain": also its path in the HDF5 output
+  ElementType type = ElementType::f32;
+  int channels = 1;
+  int width = 0;
+  int height = 0;  // 1 when not an image
+  std::string unit;
+  std::string description;
+  bool image = true;  // last, so aggregate initialisers written before it stay valid
+  bool on_request = false;  // written to files only when the scene lists it (per-particle arrays)
+
+  std::size_t bytes() const {
+    return std::size_t(width) * std::size_t(height) * std::size_t(channels) * element_size(type);
+  }
+};
+
+// A quantity a stage produces (the frame, an effect's field, particle state), held on the backend.
+struct Field : FieldLayout {
+  Buffer data;
+};
+
+struct State {
+  std::int64_t frames_done = 0;  // frames computed so far; the next is frame number frames_done
+  std::vector<Cut> cuts;         // the scene's cuts, then those fed at run time, in that order
+  std::deque<Field> fields;      // deque: a Field's address never moves once added
+
+  Field* find(const std::string& name);
+  const Field* find(const std::string& name) const;
+};
+
+}  // namespace bleedsim
