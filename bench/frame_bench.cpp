@@ -107,7 +107,7 @@ struct FrameScene {
 
   FrameScene(std::unique_ptr<Backend> b, const Size& s, int count)
       : backend(std::move(b)), size(s), n(count), scene(frame_scene(s, count)) {
-    problem = particle_settings_problem(scene).message;
+    problem = check_params(particle_table(), *scene.particles, scene).message;
     if (!problem.empty()) return;
     const PixelGrid grid = scene.domain.grid();
     const std::size_t pixels = std::size_t(grid.width) * grid.height;

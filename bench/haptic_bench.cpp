@@ -65,7 +65,8 @@ std::string falcon_scenario() {
 
 void time_run(benchmark::State& state, BackendKind kind) {
   if (!backend_or_skip(kind, state)) return;
-  const Scene scene = load_scenario(falcon_scenario());
+  const Scenario scenario = load_scenario(falcon_scenario());
+  const Scene& scene = scenario.scene;
   std::vector<double> frames, ticks;
   for (auto _ : state) {
     Simulation sim(scene, BackendChoice{kind == BackendKind::cuda ? BackendChoice::Want::cuda : BackendChoice::Want::cpu, 0});

@@ -105,7 +105,7 @@ struct Pile {
   Pile(std::unique_ptr<Backend> b, int count)
       : backend(std::move(b)), n(count), threads(int(std::max(1u, std::thread::hardware_concurrency()))),
         scene(pile_scene(count)) {
-    problem = particle_settings_problem(scene).message;
+    problem = check_params(particle_table(), *scene.particles, scene).message;
     if (!problem.empty()) return;
     const ParticleModel model = make_particle_model(scene);
     args.model = model;

@@ -1,11 +1,14 @@
 #pragma once
 // The bleedsim subcommands. Each returns the process exit code: 0 done, 1 failed while running,
 // 2 bad input (a scenario, texture, option or output path), 130 interrupted.
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "core/io/scenario.h"
 #include "core/runtime/backend.h"
+#include "core/runtime/simulation.h"
 #include "core/io/trace_synth.h"
 
 namespace bleedsim::cli {
@@ -25,6 +28,8 @@ struct RunOptions {
 };
 
 int run_command(const RunOptions& options);
+// The scenario's simulation on the backend asked for; an InputError placed in the scenario file.
+std::unique_ptr<Simulation> make_simulation(const Scenario& scenario, const BackendChoice& backend);
 
 struct StudyOptions {
   std::string scenario;
@@ -40,6 +45,8 @@ int study_command(const StudyOptions& options);
 int validate_command(const std::string& scenario);
 int hash_command(const std::string& scenario, const BackendChoice& backend);
 int info_command();
+// "text", "json" or "markdown".
+int params_command(const std::string& format);
 int trace_info_command(const std::string& path, double max_repair_gap_ms);
 
 struct SynthOptions {

@@ -11,7 +11,8 @@
 namespace bleedsim::cli {
 
 int hash_command(const std::string& scenario, const BackendChoice& backend) {
-  Simulation sim(load_scenario(scenario), backend);
+  const std::unique_ptr<Simulation> made = make_simulation(load_scenario(scenario), backend);
+  Simulation& sim = *made;
   std::fprintf(stderr, "bleedsim: hashing on %s (%s)\n", to_string(sim.backend().kind()),
                sim.backend().device_name().c_str());
   std::uint64_t run_hash = fnv1a64(nullptr, 0);

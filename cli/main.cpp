@@ -111,6 +111,13 @@ int main(int argc, char** argv) {
 
   CLI::App* info_cmd = app.add_subcommand("info", "version, build flags and available backends");
 
+  std::string params_format = "text";
+  CLI::App* params_cmd = app.add_subcommand(
+      "params", "every scenario table's keys: type, unit, default, bounds, rules (docs/scenario-format.md)");
+  params_cmd->add_flag_callback("--json", [&] { params_format = "json"; }, "as JSON, for tools");
+  params_cmd->add_flag_callback("--markdown", [&] { params_format = "markdown"; },
+                                "as the tables docs/scenario-format.md holds (scripts/update-param-docs)");
+
   CLI::App* trace_cmd = app.add_subcommand("trace", "recorded Falcon stylus traces (docs/traces.md)");
   trace_cmd->require_subcommand(1);
   std::string trace_path;
@@ -174,6 +181,7 @@ int main(int argc, char** argv) {
     }
     if (*hash_cmd) return hash_command(hash_path, hash_backend.choice());
     if (*info_cmd) return info_command();
+    if (*params_cmd) return params_command(params_format);
     if (*trace_info_cmd) return trace_info_command(trace_path, repair_gap_ms);
     if (*trace_synth_cmd) return trace_synth_command(synth);
   } catch (const bleedsim::InputError& e) {

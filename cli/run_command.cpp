@@ -52,8 +52,7 @@ struct InterruptGuard {
 
 // The fields a run writes: the frame first (PNGs are made from it), then those [output].fields
 // names, or when it names none, all but the large per-particle arrays.
-std::vector<FieldLayout> fields_to_write(const Simulation& sim) {
-  const std::vector<std::string>& wanted = sim.scene().output.fields;
+std::vector<FieldLayout> fields_to_write(const Simulation& sim, const std::vector<std::string>& wanted) {
   std::vector<FieldLayout> specs = {*sim.field("frame").field};
   for (const std::string& name : sim.field_names()) {
     const bool listed = std::find(wanted.begin(), wanted.end(), name) != wanted.end();
@@ -63,16 +62,15 @@ std::vector<FieldLayout> fields_to_write(const Simulation& sim) {
   return specs;
 }
 
-std::vector<std::pair<std::string, std::string>> provenance(const Simulation& sim) {
-  const Scene& scene = sim.scene();
+std::vector<std::pair<std::string, std::string>> provenance(const Simulation& sim, const Scenario& scenario) {
   return {{"bleedsim_version", version()},
           {"git_sha", git_sha()},
           {"backend", to_string(sim.backend().kind())},
           {"device", sim.backend().device_name()},
           {"build_flags", build_flags()},
-          {"scene_name", scene.name},
-          {"scenario_path", scene.source_path},
-          {"scenario_text", scene.source_text}};
+          {"scene_name", sim.scene().name},
+          {"scenario_path", scenario.path},
+          {"scenario_text", scenario.text}};
 }
 
 bool png_due(long frame, long frames, int every) {
@@ -111,29 +109,39 @@ double seconds_since(Clock::time_point start) {
 
 }  // namespace
 
+std::unique_ptr<Simulation> make_simulation(const Scenario& scenario, const BackendChoice& backend) {
+  try {
+    return std::make_unique<Simulation>(scenario.scene, backend);
+  } catch (const InputError& e) {
+    throw scenario.placed(e);  // the memory check names scene.width_px: point at its line
+  }
+}
+
 int run_command(const RunOptions& options) {
-  Scene scene = load_scenario(options.scenario);
-  if (options.png_every) scene.output.png_every = *options.png_every;
-  if (options.contact_sheet) scene.output.contact_sheet = *options.contact_sheet;
+  Scenario scenario = load_scenario(options.scenario);
+  OutputSpec& out = scenario.output;
+  if (options.png_every) out.png_every = *options.png_every;
+  if (options.contact_sheet) out.contact_sheet = *options.contact_sheet;
   const bool dir_from_cli = options.out_dir.has_value();
-  if (dir_from_cli) scene.output.dir = *options.out_dir;
-  const SourcePlace dir_place = dir_from_cli ? SourcePlace{} : scene.place_of("output.dir");
+  if (dir_from_cli) out.dir = *options.out_dir;
+  const SourcePlace dir_place = dir_from_cli ? SourcePlace{} : scenario.place_of("output.dir");
   const std::string dir_key = dir_from_cli ? "--out" : "output.dir";
 
-  Simulation sim(std::move(scene), options.backend);
+  const std::unique_ptr<Simulation> made = make_simulation(scenario, options.backend);
+  Simulation& sim = *made;
   const Scene& s = sim.scene();
   const long frames = s.frame_count();
-  const int png_every = s.output.png_every;
+  const int png_every = out.png_every;
 
   // Everything about the input is checked; only now is anything made on disk.
-  OutputFolder folder(s.output.dir, dir_place, dir_key);
-  const std::vector<FieldLayout> specs = fields_to_write(sim);
+  OutputFolder folder(out.dir, dir_place, dir_key);
+  const std::vector<FieldLayout> specs = fields_to_write(sim, out.fields);
   const fs::path h5_path = folder.path() / "frames.h5";
   std::unique_ptr<Hdf5FrameWriter> writer;
   if (options.hdf5) {
     try {
-      writer = std::make_unique<Hdf5FrameWriter>(h5_path.string(), specs, provenance(sim),
-                                                 s.output.deflate_level, s.trace.has_value());
+      writer = std::make_unique<Hdf5FrameWriter>(h5_path.string(), specs, provenance(sim, scenario),
+                                                 out.deflate_level, s.trace.has_value());
     } catch (const std::runtime_error& e) {
       throw folder.error(e.what());
     }
@@ -144,8 +152,8 @@ int run_command(const RunOptions& options) {
     remove_old_pngs(png_folder);
   }
   std::unique_ptr<ContactSheet> sheet;
-  if (s.output.contact_sheet > 0)
-    sheet = std::make_unique<ContactSheet>(frames, s.output.contact_sheet, s.domain.width_px, s.domain.height_px);
+  if (out.contact_sheet > 0)
+    sheet = std::make_unique<ContactSheet>(frames, out.contact_sheet, s.domain.width_px, s.domain.height_px);
   folder.keep();
 
   if (!options.quiet)

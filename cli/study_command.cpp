@@ -15,6 +15,7 @@
 #include "cli/progress.h"
 #include "core/runtime/build_info.h"
 #include "core/runtime/input_error.h"
+#include "core/runtime/message_text.h"
 #include "core/io/scenario.h"
 #include "core/study/study_output.h"
 
@@ -75,9 +76,7 @@ std::string plot_command(const fs::path& folder) {
 // Three significant digits, or nothing where there is no number.
 std::string short_number(double v, bool shown = true) {
   if (!shown || std::isnan(v)) return "";
-  char text[32];
-  std::snprintf(text, sizeof text, "%.3g", v);
-  return text;
+  return format_significant(v, 3);
 }
 
 void print_table(const std::vector<StudyRun>& runs) {
@@ -100,7 +99,8 @@ void print_table(const std::vector<StudyRun>& runs) {
 }  // namespace
 
 int study_command(const StudyOptions& options) {
-  const Scene scene = load_scenario(options.scenario);
+  const Scenario scenario = load_scenario(options.scenario);
+  const Scene& scene = scenario.scene;
   StudySpec spec;
   for (const std::string& text : options.knobs) spec.sweeps.push_back(parse_knob(text));
   spec.backends = backends_for(options.backend);
@@ -124,7 +124,7 @@ int study_command(const StudyOptions& options) {
   write_study_csv(csv.string(), scene.name, runs);
   write_study_hdf5(h5.string(), study, runs,
                    {{"bleedsim_version", version()}, {"git_sha", git_sha()}, {"build_flags", build_flags()},
-                    {"scene_name", scene.name}, {"scenario_path", scene.source_path}, {"scenario_text", scene.source_text}});
+                    {"scene_name", scene.name}, {"scenario_path", scenario.path}, {"scenario_text", scenario.text}});
   folder.keep();
   if (!options.quiet) print_table(runs);
   std::printf("bleedsim study: wrote %s and %s\n", csv.string().c_str(), h5.string().c_str());

@@ -19,7 +19,7 @@ void describe_haptics(const Scene& scene) {
   const HapticParams& h = *scene.haptics;
   std::printf("  haptics    surface z = %g mm; k %g N/m, b %g N·s/m, cap %g N; passive: k·T/2 + |b| = %g < %g N·s/m\n",
               h.surface_z_mm, h.stiffness_N_per_m, h.damping_Ns_per_m, h.max_force_N,
-              h.stiffness_N_per_m * kHapticPeriod_s / 2 + h.damping_Ns_per_m, h.device_damping_Ns_per_m);
+              passivity_demand_Ns_per_m(h), h.device_damping_Ns_per_m);
   const Trace& trace = *scene.trace;
   HapticLoop loop(scene);
   const std::int64_t ticks = scene.haptic_ticks_through_frame(scene.frame_count() - 1);
@@ -43,7 +43,9 @@ void describe_haptics(const Scene& scene) {
 }  // namespace
 
 int validate_command(const std::string& scenario) {
-  const Scene scene = load_scenario(scenario);
+  const Scenario file = load_scenario(scenario);
+  const Scene& scene = file.scene;
+  const OutputSpec& out = file.output;
   const Domain& d = scene.domain;
   std::string stages;
   for (const std::string& name : Pipeline::stage_names(scene)) stages += (stages.empty() ? "" : ", ") + name;
@@ -57,9 +59,8 @@ int validate_command(const std::string& scenario) {
   std::printf("  stages     %s\n", stages.c_str());
   if (scene.trace) describe_haptics(scene);
   std::printf("  memory     %s on the backend\n", human_bytes(double(Pipeline::backend_bytes(scene))).c_str());
-  std::printf("  output     %s (HDF5 %s, PNG %s)\n", scene.output.dir.c_str(),
-              scene.output.hdf5 ? "on" : "off",
-              scene.output.png_every > 0 ? ("every " + std::to_string(scene.output.png_every)).c_str() : "off");
+  std::printf("  output     %s (HDF5 %s, PNG %s)\n", out.dir.c_str(), out.hdf5 ? "on" : "off",
+              out.png_every > 0 ? ("every " + std::to_string(out.png_every)).c_str() : "off");
   return 0;
 }
 

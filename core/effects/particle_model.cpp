@@ -2,18 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-
-#include "core/physics/splat.h"
 
 namespace bleedsim {
 namespace {
-
-std::string number(double v) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4g", v);
-  return text;
-}
 
 double cell_edge_mm(const ParticleParams& p) { return p.cell_mm > 0.0 ? p.cell_mm : p.diameter_mm; }
 
@@ -49,39 +40,9 @@ double particle_step_limit_s(const ParticleParams& p) {
   return stable_time_step_s(p.stiffness_per_s2, p.damping_per_s, p.drag_per_s, kDesignContacts);
 }
 
-SettingsProblem particle_settings_problem(const Scene& scene) {
-  const ParticleParams& p = *scene.particles;
-  const double dt = 1.0 / particle_steps_per_s(scene);
-  const double limit = particle_step_limit_s(p);
-  if (dt >= limit) {
-    int needed = int(std::floor(1.0 / (limit * scene.frame_rate_hz))) + 1;
-    while (1.0 / (scene.frame_rate_hz * needed) >= limit) ++needed;  // the floor can land on the limit
-    return {"particles.substeps", "a sub-step of " + number(dt * 1e3) + " ms is past the contact model's stability limit of " +
-           number(limit * 1e3) + " ms (stiffness " + number(p.stiffness_per_s2) + "/s², damping " +
-           number(p.damping_per_s) + "/s, drag " + number(p.drag_per_s) + "/s); use at least " +
-           std::to_string(needed) + " sub-steps per frame, or a softer contact"};
-  }
-  if (p.diameter_mm >= scene.domain.width_mm || p.diameter_mm >= scene.domain.height_mm)
-    return {"particles.diameter_mm", "particles of " + number(p.diameter_mm) + " mm do not fit in a " + number(scene.domain.width_mm) +
-           " x " + number(scene.domain.height_mm) + " mm panel"};
-  const double steps_per_s = particle_steps_per_s(scene);
-  if (p.lifetime_s * steps_per_s > 2.0e9)
-    return {"particles.lifetime_s", "a lifetime of " + number(p.lifetime_s) + " s is " + number(p.lifetime_s * steps_per_s) +
-           " steps; at most 2e9 can be counted"};
-  const double cells = double(cells_along(scene.domain.width_mm, cell_edge_mm(p))) *
-                       double(cells_along(scene.domain.height_mm, cell_edge_mm(p)));
-  if (cells >= 4.0e9)
-    return {"particles.cell_mm", "the collision grid would have " + number(cells) + " cells; at most 4e9"};
-  // The splat sums deposits as integers of bounded size: one particle's film under its centre must fit.
-  const double splat_r = p.splat_radius_mm > 0.0 ? p.splat_radius_mm : p.diameter_mm;
-  const double centre_mm = p.particle_volume_mm3 / (M_PI * splat_r * splat_r / 3.0);
-  const double most_mm = double(kMaxDepositUnits) * double(kSplatUnitMm);
-  if (centre_mm > most_mm)
-    return {"particles.particle_volume_mm3", "a particle of " + number(p.particle_volume_mm3) + " mm³ over a splat radius of " +
-                                                 number(splat_r) + " mm is " + number(centre_mm) +
-                                                 " mm thick under its centre; the splat holds at most " +
-                                                 number(most_mm) + " mm per particle"};
-  return {};
+double particle_grid_cells(const ParticleParams& p, double width_mm, double height_mm) {
+  const double cell = cell_edge_mm(p);
+  return std::max(1.0, std::ceil(width_mm / cell)) * std::max(1.0, std::ceil(height_mm / cell));
 }
 
 ParticleModel make_particle_model(const Scene& scene) {

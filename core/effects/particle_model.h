@@ -3,13 +3,11 @@
 // scene must respect for the model to stay stable (docs/particles.md derives them).
 #include <string>
 
+#include "core/effects/particle_params.h"
 #include "core/physics/particles.h"
 #include "core/runtime/scene.h"
 
 namespace bleedsim {
-
-// The most particles a cut may emit per second: keeps one step's count well inside 32 bits.
-constexpr double kMaxParticleRate = 1.0e8;
 
 // Physics steps per second: frame rate × sub-steps.
 double particle_steps_per_s(const Scene& scene);
@@ -27,14 +25,9 @@ constexpr int kDesignContacts = 8;
 // The sub-step limit a scene must keep to (kDesignContacts).
 double particle_step_limit_s(const ParticleParams& params);
 
-// Why the scene's particle settings cannot run, and the key to blame (empty when they can): a
-// sub-step past the stability limit, a panel narrower than a particle, a lifetime too long to
-// count in steps, a grid too large to key.
-struct SettingsProblem {
-  std::string key;  // "particles.substeps", ...
-  std::string message;
-};
-SettingsProblem particle_settings_problem(const Scene& scene);
+// Cells of the collision grid over a width × height mm panel, as a double: a scene's check
+// (particle_table()) refuses the grids too large to key before anything counts them in integers.
+double particle_grid_cells(const ParticleParams& params, double width_mm, double height_mm);
 
 // Requires scene.particles.
 ParticleModel make_particle_model(const Scene& scene);

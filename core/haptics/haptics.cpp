@@ -4,32 +4,15 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "core/runtime/message_text.h"
 
 namespace bleedsim {
-
-PassivityProblem passivity_problem(const HapticParams& p) {
-  // Colgate & Schenkel: a virtual spring k and damper b sampled every T are passive when the
-  // device's own damping exceeds k·T/2 + |b|. The spring's share is what sampling adds.
-  const double spring_share = p.stiffness_N_per_m * kHapticPeriod_s / 2;
-  const double needed = spring_share + std::abs(p.damping_Ns_per_m);
-  if (needed < p.device_damping_Ns_per_m) return {};
-  const std::string key = spring_share >= p.device_damping_Ns_per_m ? "haptics.stiffness_N_per_m"
-                                                                    : "haptics.damping_Ns_per_m";
-  return {key, "k·T/2 + |b| = " + format_number(spring_share) + " + " + format_number(p.damping_Ns_per_m) +
-                   " = " + format_number(needed) + " N·s/m is not below the device's damping of " +
-                   format_number(p.device_damping_Ns_per_m) +
-                   " N·s/m: at 1 kHz the contact could feed energy into the stylus and buzz (passivity "
-                   "bound of Colgate & Schenkel, b_device > k·T/2 + |b|, T = 1 ms); lower "
-                   "stiffness_N_per_m or damping_Ns_per_m"};
-}
 
 HapticLoop::HapticLoop(const Scene& scene)
     : domain_(scene.domain), cut_template_(scene.cut_at(0, 0, 0)) {
   if (!scene.haptics) throw std::invalid_argument("a haptic loop needs a scene with [haptics]");
   params_ = *scene.haptics;
-  const PassivityProblem problem = passivity_problem(params_);
-  if (!problem.key.empty()) throw std::invalid_argument(problem.key + ": " + problem.message);
+  if (const ParamProblem problem = check_params(haptic_table(), params_, scene))
+    throw std::invalid_argument(problem.text());
 }
 
 Eigen::Vector2d HapticLoop::on_panel(const Eigen::Vector3d& tool_m) const {

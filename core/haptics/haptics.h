@@ -16,9 +16,6 @@
 
 namespace bleedsim {
 
-// The haptic clock's period T (the tick rate, kHapticRate_hz, is in core/runtime/scene.h).
-constexpr double kHapticPeriod_s = 1.0 / kHapticRate_hz;
-
 // One sample of the device, in libnifalcon's frame (metres; x right, y up, z towards the user).
 struct DeviceSample {
   Eigen::Vector3d position_m = Eigen::Vector3d::Zero();
@@ -43,14 +40,6 @@ struct HapticStep {
   HapticTick record;
   std::optional<Cut> cut;
 };
-
-// Why these contact parameters cannot be rendered passively at 1 kHz (Colgate & Schenkel:
-// b_device > k·T/2 + |b|), or "" when they can. `key` names the offending parameter.
-struct PassivityProblem {
-  std::string key;
-  std::string message;
-};
-PassivityProblem passivity_problem(const HapticParams& params);
 
 class HapticLoop {
  public:

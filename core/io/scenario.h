@@ -1,16 +1,43 @@
 #pragma once
-// Scenario files (TOML, docs/scenario-format.md) → Scene.
+// Scenario files (TOML, docs/scenario-format.md) → a Scene, with what the file says beside it: the
+// outputs, its text and where each key was written.
+#include <map>
 #include <string>
+#include <vector>
 
+#include "core/io/output_spec.h"
+#include "core/runtime/input_error.h"
+#include "core/runtime/params.h"
 #include "core/runtime/scene.h"
 
 namespace bleedsim {
 
-// Reads, validates and resolves a scenario file: every key checked for type and range, unknown
-// keys refused, the tissue texture loaded. Throws InputError naming file, line, column and key.
-Scene load_scenario(const std::string& path);
+struct Scenario {
+  Scene scene;
+  OutputSpec output;
+  std::string path;  // the scenario file
+  std::string text;  // its text, recorded in every output for provenance
+  std::map<std::string, SourcePlace> places;  // where each key was written, for later messages
+
+  // Where `key` was written (the file alone when it was not).
+  SourcePlace place_of(const std::string& key) const;
+  // The same error, placed where its key was written when it came without a place (an error of
+  // the simulation or the memory check, which know keys but not files).
+  InputError placed(const InputError& error) const;
+};
+
+// Reads, validates and resolves a scenario file: every key checked for type and range (each
+// table's rules in core/), unknown keys refused, the tissue texture loaded. Throws InputError
+// naming file, line, column and key.
+Scenario load_scenario(const std::string& path);
 
 // The same for text already in memory; `path` names it in messages and anchors relative paths.
-Scene parse_scenario(const std::string& text, const std::string& path);
+Scenario parse_scenario(const std::string& text, const std::string& path);
+
+// Every table a scenario may hold, in the order docs/scenario-format.md lists them: what
+// `bleedsim params` prints and the docs' generated tables show.
+std::vector<TableView> scenario_tables();
+// The parameter "table.key" ("particles.substeps") of those tables; std::out_of_range when none is.
+const ParamView& scenario_param(const std::string& key);
 
 }  // namespace bleedsim

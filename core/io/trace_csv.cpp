@@ -24,18 +24,8 @@ const std::string kForceHeader = "t_s,x_m,y_m,z_m,buttons,fx_N,fy_N,fz_N";
 const char* const kRequired[] = {"device", "frame", "rate_hz"};
 
 
-// A number for a human: `digits` significant digits (for rates, durations).
-std::string rounded(double value, int digits = 4) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.*g", digits, value);
-  return text;
-}
-
-std::string fixed(double value, int decimals) {
-  char text[48];
-  std::snprintf(text, sizeof text, "%.*f", decimals, value);
-  return text;
-}
+// A number for a human: four significant digits (rates, durations).
+std::string rounded(double value) { return format_significant(value, 4); }
 
 bool is_space(char c) { return c == ' ' || c == '\t'; }
 
@@ -319,7 +309,7 @@ class Parser {
         const TraceSample& b = s[k];
         const double gap = b.t_s - a.t_s;
         if (gap > 1.5 * period) {
-          const std::string what = "a " + rounded(gap * 1000) + " ms dropout after t = " + fixed(a.t_s, 4) + " s";
+          const std::string what = "a " + rounded(gap * 1000) + " ms dropout after t = " + format_fixed(a.t_s, 4) + " s";
           if (!(options_.max_repair_gap_s > 0 && gap <= options_.max_repair_gap_s))
             fail(lines_[k], 1, "t_s",
                  what + " (between line " + std::to_string(lines_[k - 1]) + " and line " + std::to_string(lines_[k]) +

@@ -55,9 +55,10 @@ std::size_t available_host_memory() {
                    address_space_room()});
 }
 
-void require_room(const Scene& scene, std::size_t need, std::size_t room, const std::string& memory_kind) {
+void require_room(const Scene& scene, std::size_t need, std::size_t room, const std::string& memory_kind,
+                  const SourcePlace& where) {
   if (need <= room) return;
-  throw InputError(scene.place_of("scene.width_px"), "scene.width_px",
+  throw InputError(where, "scene.width_px",
                    "a " + std::to_string(scene.domain.width_px) + " x " +
                        std::to_string(scene.domain.height_px) + " px scene needs " + human_bytes(double(need)) +
                        " of " + memory_kind + " memory, but only " + human_bytes(double(room)) + " is available");

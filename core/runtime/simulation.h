@@ -39,7 +39,8 @@ class Simulation {
   const std::string& backend_reason() const { return backend_reason_; }
 
   // A cut the host's tool made; the scene's effects answer it from cut.start_s on.
-  // Throws std::invalid_argument for non-finite values or a non-positive radius or growth.
+  // Throws std::invalid_argument for a cut cut_table() refuses (off the panel, a non-positive
+  // radius or growth, a value that is not finite), naming the key.
   void add_cut(const Cut& cut);
   const std::vector<Cut>& cuts() const { return state_.cuts; }
 

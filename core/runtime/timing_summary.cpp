@@ -4,15 +4,14 @@
 #include <cmath>
 #include <cstdio>
 
+#include "core/runtime/message_text.h"
+
 namespace bleedsim {
 namespace {
 
 // Microseconds below a millisecond, milliseconds above: three significant digits either way.
 std::string duration_text(double s) {
-  char text[32];
-  if (s < 1e-3) std::snprintf(text, sizeof text, "%.3g µs", s * 1e6);
-  else std::snprintf(text, sizeof text, "%.3g ms", s * 1e3);
-  return text;
+  return s < 1e-3 ? format_significant(s * 1e6, 3) + " µs" : format_significant(s * 1e3, 3) + " ms";
 }
 
 }  // namespace

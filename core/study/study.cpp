@@ -6,6 +6,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "core/io/scenario.h"
 #include "core/runtime/input_error.h"
 #include "core/runtime/message_text.h"
 #include "core/runtime/simulation.h"
@@ -23,15 +24,19 @@ double finest(const Knob& knob, const std::vector<double>& values, double base) 
   return knob.finer_is_larger ? std::max(*high, base) : std::min(*low, base);
 }
 
+// A knob's values keep its parameter's range (the table's, core/runtime/params.h); a factor's need
+// only be positive.
 void check_values(const Knob& knob, const std::vector<double>& values) {
   const std::string key = std::string("--knob ") + knob.name;
   if (values.empty()) throw InputError(no_place(), key, "needs at least one value");
   for (const double v : values) {
-    if (!std::isfinite(v) || !(v > 0)) throw InputError(no_place(), key, "values must be positive (got " + format_number(v) + ")");
-    if (knob.whole && v != std::floor(v))
-      throw InputError(no_place(), key, "values must be whole numbers (got " + format_number(v) + ")");
-    if (std::string(knob.name) == "blur_downsample" && v != 1 && v != 2 && v != 4)
-      throw InputError(no_place(), key, "values must be 1, 2 or 4 (got " + format_number(v) + ")");
+    if (!knob.param) {
+      if (!(v > 0) || !std::isfinite(v)) throw InputError(no_place(), key, "values must be positive (got " + format_number(v) + ")");
+      continue;
+    }
+    const ParamView& param = scenario_param(knob.param);
+    if (const ParamProblem problem = range_problem(knob.param, param.type, param.range, v))
+      throw InputError(no_place(), key, "values of " + problem.key + " " + problem.message);
   }
 }
 

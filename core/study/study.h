@@ -17,7 +17,9 @@ struct Knob {
   const char* name;
   const char* trades;        // what it changes, and what the saving costs (docs, --help)
   bool finer_is_larger;
-  bool whole;                // its values are whole numbers
+  // The parameter it sets ("particles.substeps"), whose range (core/runtime/params.h) its values
+  // must keep; null for a knob that is a factor on several (its values need only be positive).
+  const char* param;
   bool (*applies)(const Scene&);
   double (*base)(const Scene&);                        // the scene's own setting
   std::vector<double> (*default_sweep)(const Scene&);  // the values a study tries when not told

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/study/study.h"
+#include "core/io/scenario.h"
 #include "core/io/tissue_png.h"
 #include "core/runtime/tissue.h"
 
@@ -62,8 +63,7 @@ void set_resolution(Scene& s, double f) {
   scale_blur_pixels(s, f);
   s.tissue = s.tissue_source == "procedural"
                  ? procedural_tissue(s.domain.width_px, s.domain.height_px, s.seed)
-                 : load_tissue_png(s.tissue_source, s.domain.width_px, s.domain.height_px,
-                                   s.place_of("tissue.texture"), "tissue.texture");
+                 : load_tissue_png(s.tissue_source, s.domain.width_px, s.domain.height_px, {}, "tissue.texture");
 }
 
 void set_blur_downsample(Scene& s, double d) {
@@ -78,7 +78,7 @@ const std::vector<Knob>& knobs() {
       {"stiffness",
        "the contact spring between particles (per mm of overlap): softer lets blood compress and "
        "overlap; at the same sub-steps it saves no time, but it is what lets fewer sub-steps stay stable",
-       true, false, has_particles, [](const Scene& s) { return s.particles->stiffness_per_s2; },
+       true, "particles.stiffness_per_s2", has_particles, [](const Scene& s) { return s.particles->stiffness_per_s2; },
        [](const Scene& s) {
          const double k = s.particles->stiffness_per_s2;
          return std::vector<double>{k / 16, k / 4, k};
@@ -87,34 +87,34 @@ const std::vector<Knob>& knobs() {
       {"substeps",
        "physics steps per frame (the time step): fewer cost less; below the contact's stability "
        "limit the contact is softened to stay stable, so blood compresses more",
-       true, true, has_particles, [](const Scene& s) { return double(s.particles->substeps); },
+       true, "particles.substeps", has_particles, [](const Scene& s) { return double(s.particles->substeps); },
        [](const Scene& s) { return whole_multiples(s.particles->substeps, {0.25, 0.5, 1, 2}); }, set_substeps},
       {"max_per_cell",
        "neighbours visited per grid cell in a collision: fewer cost less, and let crowded blood "
        "pass through itself",
-       true, true, has_particles, [](const Scene& s) { return double(s.particles->max_per_cell); },
+       true, "particles.max_per_cell", has_particles, [](const Scene& s) { return double(s.particles->max_per_cell); },
        [](const Scene& s) { return whole_multiples(s.particles->max_per_cell, {0.25, 0.5, 1, 2}); },
        [](Scene& s, double v) { s.particles->max_per_cell = int(v); }},
       {"particle_size",
        "the particles' diameter, as a factor (the blood's volume kept): larger particles are fewer "
        "and cheaper, but sample the flow and the film more coarsely",
-       false, false, has_particles, [](const Scene&) { return 1.0; },
+       false, nullptr, has_particles, [](const Scene&) { return 1.0; },
        [](const Scene&) { return std::vector<double>{0.7, 1.0, 1.4, 2.0}; }, set_particle_size},
       {"blur_radius",
        "the blur's taps either side (its Gaussian's width kept): fewer cost less, and cut the "
        "Gaussian's tails off",
-       true, true, has_blur, [](const Scene& s) { return double(s.blur->radius_px); },
+       true, "blur.radius_px", has_blur, [](const Scene& s) { return double(s.blur->radius_px); },
        [](const Scene& s) { return whole_multiples(s.blur->radius_px, {0.25, 0.5, 1, 2}); },
        [](Scene& s, double r) { s.blur->radius_px = int(r); }},
       {"blur_downsample",
        "the blur's downsampling (1, 2 or 4; its width on the panel kept): more is cheaper, and "
        "coarsens the film's edges",
-       false, true, has_blur, [](const Scene& s) { return double(s.blur->downsample); },
-       [](const Scene&) { return std::vector<double>{1, 2, 4}; }, set_blur_downsample},
+       false, "blur.downsample", has_blur, [](const Scene& s) { return double(s.blur->downsample); },
+       [](const Scene&) { return scenario_param("blur.downsample").range.only; }, set_blur_downsample},
       {"resolution",
        "the panel's pixels, as a factor on width and height (the spread texture, the film, the "
        "frame): fewer are cheaper and blur every edge",
-       true, false, always, [](const Scene&) { return 1.0; },
+       true, nullptr, always, [](const Scene&) { return 1.0; },
        [](const Scene&) { return std::vector<double>{0.25, 0.5, 1.0}; }, set_resolution},
   };
   return table;

@@ -9,6 +9,7 @@
 #include <functional>
 #include <stdexcept>
 
+#include "core/runtime/message_text.h"
 #include "core/runtime/timing_summary.h"
 
 namespace bleedsim {
@@ -31,9 +32,7 @@ const ErrorColumn kErrorColumns[] = {{"film_l1_mm", &FrameErrors::film_l1_mm, "m
 std::string cell(double v) {
   if (std::isnan(v)) return "";
   if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
-  char text[32];
-  std::snprintf(text, sizeof text, "%.6g", v);
-  return text;
+  return format_significant(v, 6);
 }
 
 // A CSV field: quoted when it holds a comma or a quote.

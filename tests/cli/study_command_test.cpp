@@ -65,7 +65,7 @@ TEST(StudyCommand, BadKnobsExitTwoAndWriteNothing) {
   } cases[] = {{"substep=1,2", "--knob: no knob 'substep' (known: stiffness, substeps, max_per_cell,"},
                {"substeps", "--knob: write it as substeps=v1,v2,... (got 'substeps')"},
                {"substeps=20,x", "--knob substeps: expected numbers separated by commas, got 'x'"},
-               {"blur_downsample=3", "--knob blur_downsample: values must be 1, 2 or 4 (got 3)"}};
+               {"blur_downsample=3", "--knob blur_downsample: values of blur.downsample must be 1, 2 or 4 (got 3)"}};
   for (const auto& c : cases) {
     const CliResult result = run_cli("study '" + scene.string() + "' --knob " + c.knob + " --backend cpu --out '" +
                                      (folder / "out").string() + "'");

@@ -361,7 +361,7 @@ void run_and_check(const std::string& name, Scene scene, const Expect& expect, R
   }
 }
 
-Scene load_hard(const std::string& name) { return load_scenario(hard_scenario(name)); }
+Scene load_hard(const std::string& name) { return load_scenario(hard_scenario(name)).scene; }
 
 // ---- the cases ---------------------------------------------------------------------------------
 // Each case's every-frame overlap bound is for pairs at least one frame old. Where new particles

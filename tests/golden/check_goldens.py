@@ -46,6 +46,7 @@ import numpy as np
 
 from golden_film import check_blur, check_particles, pixel_centres
 from golden_haptics import check_haptics
+from scenario_defaults import fill_cut, load_params, read_scenario
 
 STAIN_TOLERANCE = 2e-6   # float32 arithmetic in the reference, float64 here ...
 STAIN_TOLERANCE_PER_CUT = 3e-7   # ... and each overlapping cut's factor adds a few float32 roundings
@@ -63,12 +64,10 @@ def expected_stain(scenario, t):
     scene = scenario["scene"]
     x, y = pixel_centres(scene)
     xx, yy = np.meshgrid(x, y)
-    spread = scenario.get("spread", {})
     light_left = np.ones((scene["height_px"], scene["width_px"]))
-    for cut in scenario.get("cut", []):
-        r = cut.get("radius_mm", spread.get("radius_mm", 4.0))
-        growth = cut.get("growth_per_s", spread.get("growth_per_s", 0.5))
-        amplitude = np.clip((t - cut.get("start_s", 0.0)) * growth, 0.0, 1.0)
+    for cut in scenario["cut"]:
+        r, growth = cut["radius_mm"], cut["growth_per_s"]
+        amplitude = np.clip((t - cut["start_s"]) * growth, 0.0, 1.0)
         d = np.hypot(xx - cut["x_mm"], yy - cut["y_mm"])
         final = np.where(d < r, ((r - d) / r) ** 6, 0.0)   # the report's profile
         light_left *= 1.0 - amplitude * final
@@ -134,10 +133,10 @@ def check_frames(keys, frames, stains, films, problems, notes, film_name="splat/
         notes.append(f"frame under the film ({film_name}): {checked} pixel channels checked, {unknown} with the tissue unknown")
 
 
-def check_scene(root, golden, name):
+def check_scene(root, golden, name, params):
     problems, notes = [], []
-    scenario = tomllib.loads((root / "scenarios/golden" / f"{name}.toml").read_text())
-    fps = scenario["scene"].get("frame_rate_hz", 30.0)
+    scenario = read_scenario(tomllib.loads((root / "scenarios/golden" / f"{name}.toml").read_text()), params)
+    fps = scenario["scene"]["frame_rate_hz"]
     frames_pinned = sum(1 for line in (golden / name / "hashes.txt").read_text().splitlines()
                         if line and not line.startswith("#"))
     expected_frames = round(scenario["scene"]["duration_s"] * fps)
@@ -150,8 +149,8 @@ def check_scene(root, golden, name):
             problems.append(f"key frames {keys}, expected {wanted_keys}")
         frames, times = f["frame"][:], f["time"][:]
         if "haptics" in scenario:   # the stylus' cuts follow the scripted ones, as in the run
-            scenario["cut"] = scenario.get("cut", []) + check_haptics(root, scenario, f, expected_frames,
-                                                                    problems, notes)
+            scenario["cut"] += [fill_cut(cut, scenario, params)
+                                for cut in check_haptics(root, scenario, f, expected_frames, problems, notes)]
         has_spread, has_particles = "spread" in scenario, "particles" in scenario
         has_blur = has_particles and "blur" in scenario   # the parser refuses [blur] without [particles]
         wanted_fields = ((["spread/stain"] if has_spread else []) +
@@ -173,7 +172,7 @@ def check_scene(root, golden, name):
         if abs(times[i] - t) > 1e-12:
             problems.append(f"key frame {k}: time {times[i]} s, expected {t} s")
         error = np.abs(stains[i] - expected_stain(scenario, t)).max() if has_spread else np.abs(stains[i]).max()
-        if error > STAIN_TOLERANCE + STAIN_TOLERANCE_PER_CUT * len(scenario.get("cut", [])):
+        if error > STAIN_TOLERANCE + STAIN_TOLERANCE_PER_CUT * len(scenario["cut"]):
             problems.append(f"key frame {k}: stain differs from the report's formula by {error:.3g}")
     check_frames(keys, frames, stains, films, problems, notes,
                  "blur/thickness" if has_blur else "splat/thickness")
@@ -189,12 +188,15 @@ def main():
     parser.add_argument("root", nargs="?", type=pathlib.Path, default=pathlib.Path(__file__).resolve().parents[2],
                         help="the repository root (its scenarios/golden)")
     parser.add_argument("--golden-dir", type=pathlib.Path, help="the golden scenes' folders (default: ROOT/golden)")
+    parser.add_argument("--bleedsim", required=True,
+                        help="the bleedsim CLI, whose `params --json` gives every default")
     args = parser.parse_args()
+    params = load_params(args.bleedsim)
     golden = args.golden_dir or args.root / "golden"
     scenes = sorted(p.name for p in golden.iterdir() if p.is_dir())
     failed = False
     for name in scenes:
-        problems, notes = check_scene(args.root, golden, name)
+        problems, notes = check_scene(args.root, golden, name, params)
         for problem in problems:
             print(f"FAIL {name}: {problem}")
         failed |= bool(problems)

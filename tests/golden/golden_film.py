@@ -37,31 +37,22 @@ def steps_in(seconds, steps_per_s):
 
 
 def particle_settings(scenario):
-    """The [particles] table with its documented defaults (core/runtime/scene.h, docs/scenario-format.md)."""
+    """The [particles] table's settings (its defaults filled in by scenario_defaults.py)."""
     p = scenario["particles"]
-    fps = scenario["scene"].get("frame_rate_hz", 30.0)
-    substeps = p.get("substeps", 40)
-    steps_per_s = fps * substeps
-    if "volume_mm3_per_s" in p:
-        rate = p["volume_mm3_per_s"] / p["particle_volume_mm3"]
-    else:
-        rate = p.get("rate_per_s", 500.0)
-    bleed = p.get("bleed_s", 2.0)
-    lifetime_s = p.get("lifetime_s", 30.0)
-    fade_s = p.get("fade_s", min(1.0, lifetime_s))
-    lifetime = steps_in(lifetime_s, steps_per_s)
-    cuts = [(c.get("start_s", 0.0), c.get("rate_per_s", rate), c.get("bleed_s", bleed))
-            for c in scenario.get("cut", [])]
-    diameter = p.get("diameter_mm", 0.2)
+    substeps = p["substeps"]
+    steps_per_s = scenario["scene"]["frame_rate_hz"] * substeps
+    lifetime = steps_in(p["lifetime_s"], steps_per_s)
+    cuts = [(c["start_s"], c["rate_per_s"], c["bleed_s"]) for c in scenario["cut"]]
+    diameter = p["diameter_mm"]
     return {
-        "capacity": p.get("capacity", 65536),
+        "capacity": p["capacity"],
         "radius": diameter / 2.0,
-        "splat_radius": p.get("splat_radius_mm", 0.0) or diameter,   # 0 or absent: the diameter
-        "volume": p.get("particle_volume_mm3", 0.004),
+        "splat_radius": p["splat_radius_mm"] or diameter,   # 0: the diameter
+        "volume": p["particle_volume_mm3"],
         "substeps": substeps,
         "steps_per_s": steps_per_s,
         "lifetime": lifetime,
-        "fade": min(lifetime, steps_in(fade_s, steps_per_s)),
+        "fade": min(lifetime, steps_in(p["fade_s"], steps_per_s)),
         "cuts": cuts,
     }
 
@@ -328,10 +319,9 @@ BLUR_MARGIN = 1.01              # the error bound below is first order in the un
 
 
 def blur_settings(scenario):
-    """The [blur] table with its documented defaults (core/runtime/scene.h, docs/scenario-format.md)."""
+    """The [blur] table's settings (its defaults filled in by scenario_defaults.py)."""
     b = scenario["blur"]
-    radius = b.get("radius_px", 4)
-    return b.get("downsample", 2), radius, b.get("sigma_px", max(0.5, radius / 2.0))
+    return b["downsample"], b["radius_px"], b["sigma_px"]
 
 
 def gaussian_weights(radius, sigma, to_float32=True):

@@ -14,8 +14,6 @@ import numpy as np
 HAPTIC_RATE_HZ = 1000
 POSITION_TOLERANCE_M = 1e-12   # the same formulas in the same order; float64 both sides
 FORCE_TOLERANCE_N = 1e-9
-HAPTIC_DEFAULTS = {"surface_z_mm": 120.0, "scale": 1.0, "stiffness_N_per_m": 500.0,
-                   "damping_Ns_per_m": 0.5, "max_force_N": 8.0, "cut_button": 1, "cut_spacing_mm": 1.0}
 
 
 def read_trace(path):
@@ -48,8 +46,8 @@ def replay_samples(t, xyz, buttons, ticks):
 
 
 def expected_channel(scenario, trace_path, ticks):
-    s, h = scenario["scene"], {**HAPTIC_DEFAULTS, **scenario["haptics"]}
-    origin = h.get("panel_origin_mm", [s["width_mm"] / 2, s["height_mm"] / 2])
+    s, h = scenario["scene"], scenario["haptics"]   # its defaults filled in by scenario_defaults.py
+    origin = h["panel_origin_mm"]
     t, xyz, buttons = read_trace(trace_path)
     time, tool, held = replay_samples(t, xyz, buttons, ticks)
     panel = np.stack([origin[0] + h["scale"] * (1000.0 * tool[:, 0]),
@@ -84,7 +82,7 @@ def cuts_along_strokes(channel):
 
 def check_haptics(root, scenario, f, frames, problems, notes):
     """Checks /haptics in keyframes.h5 against the replay; returns the cuts the stylus made."""
-    fps = scenario["scene"].get("frame_rate_hz", 30.0)
+    fps = scenario["scene"]["frame_rate_hz"]
     ticks = math.floor(frames * HAPTIC_RATE_HZ / fps) + 1   # ticks 0 .. the last frame's end
     trace_path = (root / "scenarios/golden" / scenario["haptics"]["trace"]).resolve()
     want = expected_channel(scenario, trace_path, ticks)

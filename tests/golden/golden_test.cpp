@@ -80,7 +80,7 @@ TEST_P(Golden, EveryFrameMatchesItsPinnedHash) {
   }
   const std::vector<FieldHashes> pinned = read_hashes(golden_dir(c.scene));
   const std::map<long, FieldBytes> key_frames = read_key_frames(golden_dir(c.scene));
-  Simulation sim(load_scenario(scenario_path(c.scene)), BackendChoice{c.backend, 0});
+  Simulation sim(load_scenario(scenario_path(c.scene)).scene, BackendChoice{c.backend, 0});
   ASSERT_EQ(std::size_t(sim.scene().frame_count()), pinned.size()) << "frame count differs from the golden";
 
   std::optional<FirstMismatch> first;

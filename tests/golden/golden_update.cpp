@@ -17,7 +17,7 @@ int main(int argc, char** argv) {
   }
   try {
     const std::string scenario = argv[1], dir = argv[2];
-    Simulation sim(load_scenario(scenario), BackendChoice{BackendChoice::Want::cpu, 0});
+    Simulation sim(load_scenario(scenario).scene, BackendChoice{BackendChoice::Want::cpu, 0});
     const long frames = sim.scene().frame_count();
     const std::vector<long> keys = golden::key_frame_numbers(frames);
     std::vector<golden::FieldHashes> hashes;

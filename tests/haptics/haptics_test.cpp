@@ -37,8 +37,8 @@ TEST(HapticPassivity, TooStiffASpringIsRefused) {
   HapticParams h;
   h.stiffness_N_per_m = 3000;  // k·T/2 = 1.5: the device's 1.5 N·s/m is used up by the spring alone
   h.damping_Ns_per_m = 0;
-  const PassivityProblem problem = passivity_problem(h);
-  EXPECT_EQ(problem.key, "haptics.stiffness_N_per_m");
+  const ParamProblem problem = passivity_problem(h);
+  EXPECT_EQ(problem.key, "stiffness_N_per_m");
   EXPECT_NE(problem.message.find("k·T/2 + |b| = 1.5 + 0 = 1.5 N·s/m"), std::string::npos) << problem.message;
   h.stiffness_N_per_m = 2990;  // 1.495 < 1.5
   EXPECT_TRUE(passivity_problem(h).key.empty());
@@ -47,7 +47,7 @@ TEST(HapticPassivity, TooStiffASpringIsRefused) {
 TEST(HapticPassivity, TooMuchVirtualDampingIsRefused) {
   HapticParams h;
   h.damping_Ns_per_m = 1.25;  // 0.25 + 1.25 = 1.5, not below 1.5
-  EXPECT_EQ(passivity_problem(h).key, "haptics.damping_Ns_per_m");
+  EXPECT_EQ(passivity_problem(h).key, "damping_Ns_per_m");
   h.device_damping_Ns_per_m = 2.0;
   EXPECT_TRUE(passivity_problem(h).key.empty());
   EXPECT_THROW(HapticLoop(test::scene_in_code(true)), std::invalid_argument);  // no [haptics]

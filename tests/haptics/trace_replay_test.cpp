@@ -95,7 +95,7 @@ Scene load_in(const ScratchFolder& scratch, const std::string& scenario) {
   fs::create_directories(scratch.path() / "scenes");
   const fs::path file = scratch.path() / "scenes" / "stroke.toml";
   std::ofstream(file) << scenario;
-  return load_scenario(file.string());
+  return load_scenario(file.string()).scene;
 }
 
 TEST(HapticsScenario, ReadsTheTableAndTheTraceRelativeToTheScenario) {

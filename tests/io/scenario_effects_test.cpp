@@ -86,7 +86,8 @@ const std::string kFullParticles =
     "fields = [\"splat/thickness\", \"particles/position\"]\n";  // 43
 
 TEST(ScenarioParticles, ReadsEveryParticleKey) {
-  const Scene scene = parse_scenario(kFullParticles, kPath);
+  const Scenario scenario = parse_scenario(kFullParticles, kPath);
+  const Scene& scene = scenario.scene;
   ASSERT_TRUE(scene.particles.has_value());
   const ParticleParams& p = *scene.particles;
   EXPECT_EQ(p.capacity, 4096);
@@ -119,20 +120,21 @@ TEST(ScenarioParticles, ReadsEveryParticleKey) {
   EXPECT_EQ(scene.cuts[1].rate_per_s, 1200.0);
   EXPECT_EQ(scene.cuts[1].bleed_s, 0.25);
 
-  EXPECT_EQ(scene.output.fields, (std::vector<std::string>{"splat/thickness", "particles/position"}));
+  EXPECT_EQ(scenario.output.fields, (std::vector<std::string>{"splat/thickness", "particles/position"}));
 
-  EXPECT_EQ(scene.place_of("particles").line, 10);
-  EXPECT_EQ(scene.place_of("particles.capacity").line, 11);
-  EXPECT_EQ(scene.place_of("particles.gravity_mm_s2").line, 19);
-  EXPECT_EQ(scene.place_of("particles.max_speed_mm_s").line, 23);
-  EXPECT_EQ(scene.place_of("particles.substeps").line, 24);
-  EXPECT_EQ(scene.place_of("particles.particle_volume_mm3").line, 28);
-  EXPECT_EQ(scene.place_of("particles.splat_radius_mm").line, 29);
-  EXPECT_EQ(scene.place_of("cut[1].rate_per_s").line, 39);
+  EXPECT_EQ(scenario.place_of("particles").line, 10);
+  EXPECT_EQ(scenario.place_of("particles.capacity").line, 11);
+  EXPECT_EQ(scenario.place_of("particles.gravity_mm_s2").line, 19);
+  EXPECT_EQ(scenario.place_of("particles.max_speed_mm_s").line, 23);
+  EXPECT_EQ(scenario.place_of("particles.substeps").line, 24);
+  EXPECT_EQ(scenario.place_of("particles.particle_volume_mm3").line, 28);
+  EXPECT_EQ(scenario.place_of("particles.splat_radius_mm").line, 29);
+  EXPECT_EQ(scenario.place_of("cut[1].rate_per_s").line, 39);
 }
 
 TEST(ScenarioParticles, AnEmptyTableTakesTheDocumentedDefaults) {
-  const Scene scene = parse_scenario(kParticleBase, kPath);
+  const Scenario scenario = parse_scenario(kParticleBase, kPath);
+  const Scene& scene = scenario.scene;
   ASSERT_TRUE(scene.particles.has_value());
   const ParticleParams& p = *scene.particles;
   // The values docs/scenario-format.md lists, written out so that a changed default shows here.
@@ -161,11 +163,12 @@ TEST(ScenarioParticles, AnEmptyTableTakesTheDocumentedDefaults) {
   ASSERT_EQ(scene.cuts.size(), 1u);
   EXPECT_EQ(scene.cuts[0].rate_per_s, 500.0);
   EXPECT_EQ(scene.cuts[0].bleed_s, 2.0);
-  EXPECT_TRUE(scene.output.fields.empty());
+  EXPECT_TRUE(scenario.output.fields.empty());
 }
 
 TEST(ScenarioParticles, FadeDefaultsToTheLifetimeWhenTheLifetimeIsShorter) {
-  const Scene scene = parse_scenario(particles_with("lifetime_s = 0.5\n"), kPath);
+  const Scenario scenario = parse_scenario(particles_with("lifetime_s = 0.5\n"), kPath);
+  const Scene& scene = scenario.scene;
   EXPECT_EQ(scene.particles->lifetime_s, 0.5);
   EXPECT_EQ(scene.particles->fade_s, 0.5);
 }
@@ -183,7 +186,7 @@ TEST(ScenarioParticles, EachKeyOutOfRangeIsRefusedAtItsLine) {
       {"diameter_mm = -1", "particles.diameter_mm", "must be greater than 0 and at most 100 (got -1)"},
       {"diameter_mm = 0", "particles.diameter_mm", "must be greater than 0 and at most 100 (got 0)"},
       {"diameter_mm = \"0.2\"", "particles.diameter_mm", "expected a number, got a string"},
-      {"cell_mm = 0.1", "particles.cell_mm", "must be between 0.2 and 10000 (got 0.1)"},  // the default diameter
+      {"cell_mm = 0.1", "particles.cell_mm", "must be 0 (the diameter) or at least diameter_mm, 0.2 mm (got 0.1)"},
       {"max_per_cell = 0", "particles.max_per_cell", "must be between 1 and 1024 (got 0)"},
       {"rate_per_s = -5", "particles.rate_per_s", "must be between 0 and 1e+08 (got -5)"},
       {"rate_per_s = 1.5e8", "particles.rate_per_s", "must be between 0 and 1e+08 (got 1.5e+08)"},
@@ -195,9 +198,9 @@ TEST(ScenarioParticles, EachKeyOutOfRangeIsRefusedAtItsLine) {
       {"bleed_s = -1", "particles.bleed_s", "must be between 0 and 86400 (got -1)"},
       {"lifetime_s = 0", "particles.lifetime_s", "must be greater than 0 and at most 86400 (got 0)"},
       {"lifetime_s = nan", "particles.lifetime_s", "must be a finite number (got nan)"},
-      {"fade_s = 0", "particles.fade_s", "must be greater than 0 and at most 30 (got 0)"},
+      {"fade_s = 0", "particles.fade_s", "must be greater than 0 and at most 86400 (got 0)"},
       // 30: the default lifetime.
-      {"fade_s = 30.5", "particles.fade_s", "must be greater than 0 and at most 30 (got 30.5)"},
+      {"fade_s = 30.5", "particles.fade_s", "must be at most lifetime_s, 30 s (got 30.5)"},
       {"drag_per_s = -1", "particles.drag_per_s", "must be between 0 and 1e+06 (got -1)"},
       {"stiffness_per_s2 = 0", "particles.stiffness_per_s2", "must be greater than 0 and at most 1e+12 (got 0)"},
       {"damping_per_s = -1", "particles.damping_per_s", "must be between 0 and 1e+06 (got -1)"},
@@ -207,8 +210,8 @@ TEST(ScenarioParticles, EachKeyOutOfRangeIsRefusedAtItsLine) {
       {"substeps = 33.0", "particles.substeps", "expected an integer, got a floating-point number"},
       {"jitter_mm = -0.1", "particles.jitter_mm", "must be between 0 and 100 (got -0.1)"},
       {"velocity_jitter_mm_s = -1", "particles.velocity_jitter_mm_s", "must be between 0 and 100000 (got -1)"},
-      {"splat_radius_mm = 0", "particles.splat_radius_mm", "must be greater than 0 and at most 100 (got 0)"},
-      {"splat_radius_mm = 100.5", "particles.splat_radius_mm", "must be greater than 0 and at most 100 (got 100.5)"},
+      {"splat_radius_mm = -0.1", "particles.splat_radius_mm", "must be between 0 and 100 (got -0.1)"},
+      {"splat_radius_mm = 100.5", "particles.splat_radius_mm", "must be between 0 and 100 (got 100.5)"},
   };
   for (const Case& c : cases)
     EXPECT_TRUE(refused_at(particles_with(std::string(c.line) + "\n"), kParticlesEnd, c.key, c.gist)) << c.line;
@@ -218,15 +221,15 @@ TEST(ScenarioParticles, EachKeyOutOfRangeIsRefusedAtItsLine) {
 
 TEST(ScenarioParticles, FadeLongerThanTheLifetime) {
   EXPECT_TRUE(refused_at(particles_with("lifetime_s = 5\nfade_s = 6\n"), kParticlesEnd + 1, "particles.fade_s",
-                         "must be greater than 0 and at most 5 (got 6)"));
-  EXPECT_EQ(parse_scenario(particles_with("lifetime_s = 5\nfade_s = 5\n"), kPath).particles->fade_s, 5.0);
+                         "must be at most lifetime_s, 5 s (got 6)"));
+  EXPECT_EQ(parse_scenario(particles_with("lifetime_s = 5\nfade_s = 5\n"), kPath).scene.particles->fade_s, 5.0);
 }
 
 TEST(ScenarioParticles, CellSmallerThanTheDiameter) {
   EXPECT_TRUE(refused_at(particles_with("diameter_mm = 0.5\ncell_mm = 0.4\n"), kParticlesEnd + 1,
-                         "particles.cell_mm", "must be between 0.5 and 10000 (got 0.4)"));
+                         "particles.cell_mm", "must be 0 (the diameter) or at least diameter_mm, 0.5 mm (got 0.4)"));
   // A cell as large as a particle is the smallest allowed.
-  EXPECT_EQ(parse_scenario(particles_with("diameter_mm = 0.5\ncell_mm = 0.5\n"), kPath).particles->cell_mm, 0.5);
+  EXPECT_EQ(parse_scenario(particles_with("diameter_mm = 0.5\ncell_mm = 0.5\n"), kPath).scene.particles->cell_mm, 0.5);
 }
 
 TEST(ScenarioParticles, VectorsNeedTwoFiniteNumbersAndNameTheBadComponent) {
@@ -268,14 +271,16 @@ TEST(ScenarioParticles, VolumeAndParticleVolumeNeedEachOther) {
   EXPECT_TRUE(refused_at(particles_with("volume_mm3_per_s = 2.0\n"), kParticlesEnd, "particles.volume_mm3_per_s",
                          "needs particle_volume_mm3 beside it"));
   // A particle volume alone is the blood each particle's splat spreads; the rate keeps its default.
-  const Scene scene = parse_scenario(particles_with("particle_volume_mm3 = 0.01\n"), kPath);
+  const Scenario scenario = parse_scenario(particles_with("particle_volume_mm3 = 0.01\n"), kPath);
+  const Scene& scene = scenario.scene;
   EXPECT_EQ(scene.particles->particle_volume_mm3, 0.01);
   EXPECT_EQ(scene.particles->rate_per_s, 500.0);
-  EXPECT_EQ(scene.place_of("particles.particle_volume_mm3").line, kParticlesEnd);
+  EXPECT_EQ(scenario.place_of("particles.particle_volume_mm3").line, kParticlesEnd);
 }
 
 TEST(ScenarioParticles, VolumeOverParticleVolumeGivesTheRate) {
-  const Scene scene = parse_scenario(particles_with("volume_mm3_per_s = 2.0\nparticle_volume_mm3 = 0.004\n"), kPath);
+  const Scenario scenario = parse_scenario(particles_with("volume_mm3_per_s = 2.0\nparticle_volume_mm3 = 0.004\n"), kPath);
+  const Scene& scene = scenario.scene;
   EXPECT_DOUBLE_EQ(scene.particles->rate_per_s, 500.0);  // 2 mm³/s of 0.004 mm³ particles
   EXPECT_DOUBLE_EQ(scene.cuts[0].rate_per_s, 500.0);     // and cuts take it as their default
   // 1e5 mm³/s of 2⁻¹⁰ mm³ particles is 102,400,000 a second: more than the 1e8 allowed.
@@ -305,7 +310,7 @@ TEST(ScenarioParticles, SubStepPastTheStabilityLimitIsRefusedWithTheLimitAndTheS
 
 TEST(ScenarioParticles, SubStepJustInsideTheStabilityLimitIsAccepted) {
   // 34 sub-steps: 1/1020 s = 0.9804 ms; 2.6e6·9.612e-7 + 1.4·0.9804 = 2.499 + 1.373 = 3.872 < 4.
-  EXPECT_EQ(parse_scenario(particles_with(kStiffContact + "substeps = 34\n"), kPath).particles->substeps, 34);
+  EXPECT_EQ(parse_scenario(particles_with(kStiffContact + "substeps = 34\n"), kPath).scene.particles->substeps, 34);
 }
 
 TEST(ScenarioParticles, SubStepExactlyAtTheStabilityLimitIsRefused) {
@@ -316,7 +321,7 @@ TEST(ScenarioParticles, SubStepExactlyAtTheStabilityLimitIsRefused) {
                          "a sub-step of 1 ms is past the contact model's stability limit of 1 ms (stiffness 3.25e+05/s², "
                          "damping 100/s, drag 100/s); use at least 21 sub-steps per frame"));
   EXPECT_EQ(parse_scenario(with_line(particles_with(kStiffContact + "substeps = 21\n"), 7, "frame_rate_hz = 50"),
-                           kPath).particles->substeps, 21);
+                           kPath).scene.particles->substeps, 21);
 }
 
 TEST(ScenarioParticles, DefaultSubStepsAtALowFrameRateAreRefusedAtTheTable) {
@@ -334,7 +339,7 @@ TEST(ScenarioParticles, DefaultSubStepsAtALowFrameRateAreRefusedAtTheTable) {
   EXPECT_TRUE(refused_at(with_line(particles_with("substeps = 43\n"), 7, "frame_rate_hz = 25"), kParticlesEnd,
                          "particles.substeps", "use at least 44 sub-steps per frame"));
   EXPECT_EQ(parse_scenario(with_line(particles_with("substeps = 44\n"), 7, "frame_rate_hz = 25"), kPath)
-                .particles->substeps, 44);
+                .scene.particles->substeps, 44);
 }
 
 TEST(ScenarioParticles, AFilmThickerThanTheSplatCanSumIsRefused) {
@@ -373,10 +378,11 @@ TEST(ScenarioParticles, UnknownKeySuggestsTheNearest) {
 }
 
 TEST(ScenarioParticles, CutRateAndBleedOverrideTheTablesDefaults) {
-  const Scene scene = parse_scenario(particles_with("rate_per_s = 300\nbleed_s = 4\n") +
+  const Scenario scenario = parse_scenario(particles_with("rate_per_s = 300\nbleed_s = 4\n") +
                                          "[[cut]]\nx_mm = 1.0\ny_mm = 1.0\nrate_per_s = 0\n"
                                          "[[cut]]\nx_mm = 2.0\ny_mm = 2.0\nbleed_s = 0.5\n",
                                      kPath);
+  const Scene& scene = scenario.scene;
   ASSERT_EQ(scene.cuts.size(), 3u);
   EXPECT_EQ(scene.cuts[0].rate_per_s, 300.0);  // from [particles]
   EXPECT_EQ(scene.cuts[0].bleed_s, 4.0);
@@ -427,54 +433,56 @@ std::string blur_with(const std::string& lines) { return kBlurBase + lines; }
 
 TEST(ScenarioBlur, AcceptsTheBaseTextThatTheBlurTestsBreak) {
   ASSERT_EQ(int(lines_of(kBlurBase).size()), kBlurEnd - 1);
-  EXPECT_TRUE(parse_scenario(kBlurBase, kPath).blur.has_value());
+  EXPECT_TRUE(parse_scenario(kBlurBase, kPath).scene.blur.has_value());
   // Without [blur] a scene with particles does not blur its film.
-  EXPECT_FALSE(parse_scenario(kParticleBase, kPath).blur.has_value());
+  EXPECT_FALSE(parse_scenario(kParticleBase, kPath).scene.blur.has_value());
 }
 
 TEST(ScenarioBlur, AnEmptyTableTakesTheDocumentedDefaults) {
-  const Scene scene = parse_scenario(kBlurBase, kPath);
+  const Scenario scenario = parse_scenario(kBlurBase, kPath);
+  const Scene& scene = scenario.scene;
   ASSERT_TRUE(scene.blur.has_value());
   // The values docs/scenario-format.md lists, written out so that a changed default shows here.
   EXPECT_EQ(scene.blur->downsample, 2);
   EXPECT_EQ(scene.blur->radius_px, 4);
   EXPECT_EQ(scene.blur->sigma_px, 2.0);  // max(0.5, radius_px / 2)
-  EXPECT_EQ(scene.place_of("blur").line, kBlurHeader);
-  EXPECT_TRUE(scene.output.fields.empty());
+  EXPECT_EQ(scenario.place_of("blur").line, kBlurHeader);
+  EXPECT_TRUE(scenario.output.fields.empty());
 }
 
 TEST(ScenarioBlur, ReadsEveryBlurKey) {
-  const Scene scene = parse_scenario(blur_with("downsample = 4\n"   // 13
+  const Scenario scenario = parse_scenario(blur_with("downsample = 4\n"   // 13
                                                "radius_px = 7\n"    // 14
                                                "sigma_px = 3.25\n"  // 15
                                                "[output]\n"         // 16
                                                "fields = [\"splat/thickness\", \"blur/thickness\"]\n"),  // 17
                                      kPath);
+  const Scene& scene = scenario.scene;
   ASSERT_TRUE(scene.blur.has_value());
   EXPECT_EQ(scene.blur->downsample, 4);
   EXPECT_EQ(scene.blur->radius_px, 7);
   EXPECT_EQ(scene.blur->sigma_px, 3.25);
-  EXPECT_EQ(scene.output.fields, (std::vector<std::string>{"splat/thickness", "blur/thickness"}));
-  EXPECT_EQ(scene.place_of("blur").line, kBlurHeader);
-  EXPECT_EQ(scene.place_of("blur.downsample").line, kBlurEnd);
-  EXPECT_EQ(scene.place_of("blur.radius_px").line, kBlurEnd + 1);
-  EXPECT_EQ(scene.place_of("blur.sigma_px").line, kBlurEnd + 2);
+  EXPECT_EQ(scenario.output.fields, (std::vector<std::string>{"splat/thickness", "blur/thickness"}));
+  EXPECT_EQ(scenario.place_of("blur").line, kBlurHeader);
+  EXPECT_EQ(scenario.place_of("blur.downsample").line, kBlurEnd);
+  EXPECT_EQ(scenario.place_of("blur.radius_px").line, kBlurEnd + 1);
+  EXPECT_EQ(scenario.place_of("blur.sigma_px").line, kBlurEnd + 2);
   // A place points at the value, after `key = `.
-  EXPECT_EQ(scene.place_of("blur.downsample").column, 14);
+  EXPECT_EQ(scenario.place_of("blur.downsample").column, 14);
 }
 
 TEST(ScenarioBlur, EveryAllowedValueAtTheEndsOfItsRangeIsAccepted) {
-  EXPECT_EQ(parse_scenario(blur_with("downsample = 1\n"), kPath).blur->downsample, 1);
-  EXPECT_EQ(parse_scenario(blur_with("downsample = 2\n"), kPath).blur->downsample, 2);
-  EXPECT_EQ(parse_scenario(blur_with("downsample = 4\n"), kPath).blur->downsample, 4);
-  EXPECT_EQ(parse_scenario(blur_with("radius_px = 0\n"), kPath).blur->radius_px, 0);
-  EXPECT_EQ(parse_scenario(blur_with("radius_px = 64\n"), kPath).blur->radius_px, 64);
-  EXPECT_EQ(parse_scenario(blur_with("sigma_px = 64\n"), kPath).blur->sigma_px, 64.0);  // an integer: a number
-  EXPECT_EQ(parse_scenario(blur_with("sigma_px = 1e-3\n"), kPath).blur->sigma_px, 1e-3);
+  EXPECT_EQ(parse_scenario(blur_with("downsample = 1\n"), kPath).scene.blur->downsample, 1);
+  EXPECT_EQ(parse_scenario(blur_with("downsample = 2\n"), kPath).scene.blur->downsample, 2);
+  EXPECT_EQ(parse_scenario(blur_with("downsample = 4\n"), kPath).scene.blur->downsample, 4);
+  EXPECT_EQ(parse_scenario(blur_with("radius_px = 0\n"), kPath).scene.blur->radius_px, 0);
+  EXPECT_EQ(parse_scenario(blur_with("radius_px = 64\n"), kPath).scene.blur->radius_px, 64);
+  EXPECT_EQ(parse_scenario(blur_with("sigma_px = 64\n"), kPath).scene.blur->sigma_px, 64.0);  // an integer: a number
+  EXPECT_EQ(parse_scenario(blur_with("sigma_px = 1e-3\n"), kPath).scene.blur->sigma_px, 1e-3);
 }
 
 TEST(ScenarioBlur, SigmaDefaultsToHalfTheRadiusButNotBelowHalfAPixel) {
-  const auto sigma = [](const std::string& lines) { return parse_scenario(blur_with(lines), kPath).blur->sigma_px; };
+  const auto sigma = [](const std::string& lines) { return parse_scenario(blur_with(lines), kPath).scene.blur->sigma_px; };
   EXPECT_EQ(sigma("radius_px = 10\n"), 5.0);
   EXPECT_EQ(sigma("radius_px = 3\n"), 1.5);
   EXPECT_EQ(sigma("radius_px = 64\n"), 32.0);
@@ -492,10 +500,10 @@ TEST(ScenarioBlur, EachKeyOutOfRangeIsRefusedAtItsLine) {
     const char* gist;
   };
   const Case cases[] = {
-      {"downsample = 0", "blur.downsample", "must be between 1 and 4 (got 0)"},
+      {"downsample = 0", "blur.downsample", "must be 1, 2 or 4 (got 0)"},
       {"downsample = 3", "blur.downsample", "must be 1, 2 or 4 (got 3)"},
-      {"downsample = 5", "blur.downsample", "must be between 1 and 4 (got 5)"},
-      {"downsample = -2", "blur.downsample", "must be between 1 and 4 (got -2)"},
+      {"downsample = 5", "blur.downsample", "must be 1, 2 or 4 (got 5)"},
+      {"downsample = -2", "blur.downsample", "must be 1, 2 or 4 (got -2)"},
       {"downsample = 2.0", "blur.downsample", "expected an integer, got a floating-point number"},
       {"radius_px = -1", "blur.radius_px", "must be between 0 and 64 (got -1)"},
       {"radius_px = 65", "blur.radius_px", "must be between 0 and 64 (got 65)"},
@@ -543,11 +551,12 @@ TEST(ScenarioBlur, MayBeWrittenBeforeItsParticles) {
       "[[cut]]\n"
       "x_mm = 8.0\n"
       "y_mm = 6.0\n";
-  const Scene scene = parse_scenario(text, kPath);
+  const Scenario scenario = parse_scenario(text, kPath);
+  const Scene& scene = scenario.scene;
   ASSERT_TRUE(scene.blur.has_value());
   EXPECT_EQ(scene.blur->radius_px, 6);
   EXPECT_EQ(scene.blur->sigma_px, 3.0);
-  EXPECT_EQ(scene.place_of("blur").line, 7);
+  EXPECT_EQ(scenario.place_of("blur").line, 7);
 }
 
 TEST(ScenarioBlur, WrittenAsAValueInsteadOfATable) {

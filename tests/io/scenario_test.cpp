@@ -96,10 +96,11 @@ const std::string kFull =
     "fields = [\"spread/stain\"]\n";    // 32
 
 TEST(ScenarioParse, ReadsEverySceneField) {
-  const Scene scene = parse_scenario(kFull, kPath);
+  const Scenario scenario = parse_scenario(kFull, kPath);
+  const Scene& scene = scenario.scene;
   EXPECT_EQ(scene.name, "full-probe");
-  EXPECT_EQ(scene.source_path, kPath);
-  EXPECT_EQ(scene.source_text, kFull);  // recorded whole, for provenance in every output
+  EXPECT_EQ(scenario.path, kPath);
+  EXPECT_EQ(scenario.text, kFull);  // recorded whole, for provenance in every output
   EXPECT_EQ(scene.domain.width_px, 80);
   EXPECT_EQ(scene.domain.height_px, 60);
   EXPECT_EQ(scene.domain.width_mm, 20.0);
@@ -126,11 +127,11 @@ TEST(ScenarioParse, ReadsEverySceneField) {
   EXPECT_EQ(scene.cuts[1].radius_mm, 6.0);
   EXPECT_EQ(scene.cuts[1].growth_per_s, 2.0);
 
-  EXPECT_EQ(scene.output.dir, "results/full");
-  EXPECT_FALSE(scene.output.hdf5);
-  EXPECT_EQ(scene.output.png_every, 5);
-  EXPECT_EQ(scene.output.deflate_level, 0);
-  EXPECT_EQ(scene.output.fields, std::vector<std::string>{"spread/stain"});
+  EXPECT_EQ(scenario.output.dir, "results/full");
+  EXPECT_FALSE(scenario.output.hdf5);
+  EXPECT_EQ(scenario.output.png_every, 5);
+  EXPECT_EQ(scenario.output.deflate_level, 0);
+  EXPECT_EQ(scenario.output.fields, std::vector<std::string>{"spread/stain"});
 
   // No [tissue]: the procedural mucosa of the scene's size and seed.
   EXPECT_EQ(scene.tissue_source, "procedural");
@@ -140,9 +141,10 @@ TEST(ScenarioParse, ReadsEverySceneField) {
 }
 
 TEST(ScenarioParse, RecordsWhereEachKeyWasWritten) {
-  const Scene scene = parse_scenario(kFull, kPath);
+  const Scenario scenario = parse_scenario(kFull, kPath);
+  const Scene& scene = scenario.scene;
   const auto expect_line = [&](const std::string& key, int line) {
-    const SourcePlace place = scene.place_of(key);
+    const SourcePlace place = scenario.place_of(key);
     EXPECT_EQ(place.file, kPath) << key;
     EXPECT_EQ(place.line, line) << key;
   };
@@ -154,8 +156,8 @@ TEST(ScenarioParse, RecordsWhereEachKeyWasWritten) {
   expect_line("cut[1].start_s", 23);
   expect_line("output.fields", 32);
   // A place points at the value, after `key = `.
-  EXPECT_EQ(scene.place_of("scene.width_px").column, 12);
-  EXPECT_EQ(scene.place_of("output.dir").column, 7);
+  EXPECT_EQ(scenario.place_of("scene.width_px").column, 12);
+  EXPECT_EQ(scenario.place_of("output.dir").column, 7);
   // A key the file does not write is placed at the file as a whole.
   expect_line("tissue.texture", 0);
 }
@@ -171,7 +173,8 @@ TEST(ScenarioParse, FillsInDefaultsWhenOptionalTablesAreAbsent) {
       "[[cut]]\n"
       "x_mm = 4.0\n"
       "y_mm = 3.0\n";
-  const Scene scene = parse_scenario(text, "some/folder/minimal-probe.toml");
+  const Scenario scenario = parse_scenario(text, "some/folder/minimal-probe.toml");
+  const Scene& scene = scenario.scene;
   EXPECT_EQ(scene.name, "minimal-probe");  // the file's stem
   EXPECT_EQ(scene.frame_rate_hz, 30.0);
   EXPECT_EQ(scene.frame_count(), 30);
@@ -179,11 +182,11 @@ TEST(ScenarioParse, FillsInDefaultsWhenOptionalTablesAreAbsent) {
   EXPECT_FALSE(scene.spread.has_value());  // no effect declared, so none is run
   EXPECT_FALSE(scene.particles.has_value());
   EXPECT_FALSE(scene.blur.has_value());
-  EXPECT_EQ(scene.output.dir, "out/minimal-probe");
-  EXPECT_TRUE(scene.output.hdf5);
-  EXPECT_EQ(scene.output.png_every, 0);
-  EXPECT_EQ(scene.output.deflate_level, 4);
-  EXPECT_TRUE(scene.output.fields.empty());
+  EXPECT_EQ(scenario.output.dir, "out/minimal-probe");
+  EXPECT_TRUE(scenario.output.hdf5);
+  EXPECT_EQ(scenario.output.png_every, 0);
+  EXPECT_EQ(scenario.output.deflate_level, 4);
+  EXPECT_TRUE(scenario.output.fields.empty());
   EXPECT_EQ(scene.tissue_source, "procedural");
   // A cut that gives no size takes SpreadParams' own defaults when there is no [spread].
   ASSERT_EQ(scene.cuts.size(), 1u);
@@ -195,7 +198,8 @@ TEST(ScenarioParse, FillsInDefaultsWhenOptionalTablesAreAbsent) {
 TEST(ScenarioParse, AcceptsTheBaseTextThatTheBadInputTestsBreak) {
   // The bad-input tests trust kBase to be valid and kEnd to follow its last line.
   ASSERT_EQ(int(lines_of(kBase).size()), kEnd - 1);
-  const Scene scene = parse_scenario(kBase, kPath);
+  const Scenario scenario = parse_scenario(kBase, kPath);
+  const Scene& scene = scenario.scene;
   EXPECT_EQ(scene.name, "x");
   EXPECT_EQ(scene.cuts.size(), 2u);
   // Text appended to kBase lands in [output].
@@ -208,7 +212,7 @@ TEST(ScenarioParse, ResolvesATextureRelativeToTheScenarioFolder) {
   write_small_png(scratch.path() / "textures" / "tex.png");
   const std::string scenario = (scratch.path() / "scenes" / "textured.toml").string();
   const Scene scene =
-      parse_scenario(kBase + "[tissue]\ntexture = \"../textures/tex.png\"\n", scenario);
+      parse_scenario(kBase + "[tissue]\ntexture = \"../textures/tex.png\"\n", scenario).scene;
   EXPECT_EQ(scene.tissue_source, (scratch.path() / "textures" / "tex.png").lexically_normal().string());
   // Resampled from 2 × 2 to the panel.
   EXPECT_EQ(scene.tissue.width, 64);
@@ -338,15 +342,15 @@ TEST(ScenarioBadInput, SceneNameWithCharactersAFolderNameShouldNotHave) {
 }
 
 TEST(ScenarioParse, NamesAnUnnamedSceneAfterItsFileWithUnsafeCharactersReplaced) {
-  EXPECT_EQ(parse_scenario(kBase, "scenarios/my scene.toml").name, "my-scene");
-  EXPECT_EQ(parse_scenario(kBase, "scenarios/..toml").name, "scene.");
+  EXPECT_EQ(parse_scenario(kBase, "scenarios/my scene.toml").scene.name, "my-scene");
+  EXPECT_EQ(parse_scenario(kBase, "scenarios/..toml").scene.name, "scene.");
 }
 
 TEST(ScenarioParse, TakesAnEmptyCutListAsNoCuts) {
-  EXPECT_TRUE(parse_scenario(without_lines(kBase, 10, 16), kPath).cuts.empty());
+  EXPECT_TRUE(parse_scenario(without_lines(kBase, 10, 16), kPath).scene.cuts.empty());
   // A top-level key must come before the first table header.
   const std::string empty_list = "cut = []\n" + without_lines(kBase, 10, 16);
-  EXPECT_TRUE(parse_scenario(empty_list, kPath).cuts.empty());
+  EXPECT_TRUE(parse_scenario(empty_list, kPath).scene.cuts.empty());
 }
 
 TEST(ScenarioBadInput, ValueJustOutOfRangeIsPrintedInFullNotRoundedIntoRange) {
@@ -448,7 +452,8 @@ TEST(LoadScenario, LoadsEveryScenarioInTheRepository) {
     if (entry.path().extension() != ".toml") continue;
     SCOPED_TRACE(entry.path().string());
     try {
-      const Scene scene = load_scenario(entry.path().string());
+      const Scenario scenario = load_scenario(entry.path().string());
+  const Scene& scene = scenario.scene;
       EXPECT_EQ(scene.tissue.width, scene.domain.width_px);
       EXPECT_EQ(scene.tissue.height, scene.domain.height_px);
       EXPECT_FALSE(scene.tissue.rgba.empty());

@@ -13,7 +13,7 @@ namespace {
 
 std::vector<std::vector<std::pair<std::string, std::uint64_t>>> run_hashes(const std::string& scenario,
                                                                            int threads) {
-  Simulation sim(load_scenario(scenario), BackendChoice{BackendChoice::Want::cpu, threads});
+  Simulation sim(load_scenario(scenario).scene, BackendChoice{BackendChoice::Want::cpu, threads});
   std::vector<std::vector<std::pair<std::string, std::uint64_t>>> frames;
   for (int k = 0; k < sim.scene().frame_count(); ++k) {
     sim.step();

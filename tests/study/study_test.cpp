@@ -114,11 +114,11 @@ TEST(StudyBadInput, KnobValuesAreCheckedBeforeAnythingRuns) {
     }
     return std::string();
   };
-  EXPECT_NE(refusal("substeps", {20.5}).find("--knob substeps: values must be whole numbers (got 20.5)"), std::string::npos);
+  EXPECT_NE(refusal("substeps", {20.5}).find("--knob substeps: values of particles.substeps must be a whole number (got 20.5)"), std::string::npos);
   EXPECT_NE(refusal("resolution", {-1}).find("--knob resolution: values must be positive (got -1)"), std::string::npos);
   EXPECT_NE(refusal("blur_radius", {2}).find("--knob blur_radius: this scene has nothing it changes"), std::string::npos);
   scene.blur = BlurParams{};
-  EXPECT_NE(refusal("blur_downsample", {3}).find("--knob blur_downsample: values must be 1, 2 or 4 (got 3)"),
+  EXPECT_NE(refusal("blur_downsample", {3}).find("--knob blur_downsample: values of blur.downsample must be 1, 2 or 4 (got 3)"),
             std::string::npos);
   EXPECT_EQ(find_knob("nothing"), nullptr);
   try {

@@ -1,0 +1,64 @@
+#include "core/runtime/cut.h"
+
+#include <cmath>
+
+#include "core/runtime/message_text.h"
+#include "core/runtime/scene.h"
+
+namespace bleedsim {
+namespace {
+
+// A cut's size and flow default to the scene's [spread] and [particles]; a flow given without
+// particles would do nothing, and a file saying so is mistaken.
+ParamProblem defaults_from_scene(Cut& cut, const Written& written, const Scene& scene) {
+  const Cut wound = scene.cut_at(cut.x_mm, cut.y_mm, cut.start_s);
+  for (const auto& [key, member] : {std::pair{"radius_mm", &Cut::radius_mm}, std::pair{"growth_per_s", &Cut::growth_per_s},
+                                    std::pair{"rate_per_s", &Cut::rate_per_s}, std::pair{"bleed_s", &Cut::bleed_s}})
+    if (!written.has(key)) cut.*member = wound.*member;
+  for (const char* key : {"rate_per_s", "bleed_s"})
+    if (written.has(key) && !scene.particles) return {key, "has no effect: this scene declares no [particles]"};
+  return {};
+}
+
+// Any finite position: the panel's rule (below) says where a cut may be.
+const Range kAnywhere{-HUGE_VAL, HUGE_VAL};
+
+ParamProblem within(const char* key, double v, double size_mm) {
+  if (v >= 0 && v <= size_mm) return {};
+  return {key, "must be between 0 and " + format_number(size_mm) + " (got " + format_number(v) + ")"};
+}
+
+ParamProblem on_the_panel(const Cut& cut, const Scene& scene) {
+  if (ParamProblem problem = within("x_mm", cut.x_mm, scene.domain.width_mm)) return problem;
+  return within("y_mm", cut.y_mm, scene.domain.height_mm);
+}
+
+}  // namespace
+
+const ParamTable<Cut>& cut_table() {
+  using T = ParamType;
+  using P = Cut;
+  const auto& size = spread_table();
+  const auto& flow = particle_table();
+  static const ParamTable<P> table{
+      "cut",
+      "one table per cut: where, when, and (optionally) how large a wound and how hard it bleeds particles",
+      {{"x_mm", T::number, BLEEDSIM_MEMBER(P, x_mm), "mm", kAnywhere, "from the panel's left edge", nullptr, true,
+        "between 0 and width_mm"},
+       {"y_mm", T::number, BLEEDSIM_MEMBER(P, y_mm), "mm", kAnywhere, "from the panel's top edge (y down)", nullptr,
+        true, "between 0 and height_mm"},
+       {"start_s", T::number, BLEEDSIM_MEMBER(P, start_s), "s", {0, 86400}, "when the cut is made"},
+       {"radius_mm", T::number, BLEEDSIM_MEMBER(P, radius_mm), "mm", param_named(size, "radius_mm").range,
+        "the stain's radius", "[spread].radius_mm"},
+       {"growth_per_s", T::number, BLEEDSIM_MEMBER(P, growth_per_s), "1/s", param_named(size, "growth_per_s").range,
+        "the stain's growth", "[spread].growth_per_s"},
+       {"rate_per_s", T::number, BLEEDSIM_MEMBER(P, rate_per_s), "1/s", param_named(flow, "rate_per_s").range,
+        "particles per second while it bleeds; only with [particles]", "[particles].rate_per_s"},
+       {"bleed_s", T::number, BLEEDSIM_MEMBER(P, bleed_s), "s", param_named(flow, "bleed_s").range,
+        "how long it bleeds particles; only with [particles]", "[particles].bleed_s"}},
+      {{"the cut lies on the panel: 0 ≤ x_mm ≤ width_mm, 0 ≤ y_mm ≤ height_mm", on_the_panel}},
+      defaults_from_scene};
+  return table;
+}
+
+}  // namespace bleedsim
