@@ -28,6 +28,8 @@
 #include <vector>
 
 #include "bench/bench_util.h"
+#include "core/physics/blend.h"
+#include "core/physics/spread.h"
 #include "core/runtime/backend.h"
 #include "core/effects/blur_stage.h"
 #include "core/effects/particle_model.h"
@@ -204,14 +206,14 @@ struct FrameScene {
     film_share = double(covered) / double(pixels);
   }
 
-  void spread() { backend->spread(spread_args); }
-  void splat() { backend->splat(splat_args); }
-  void blur(BlurPhase phase) { backend->blur(phase, blur_args); }
+  void spread() { backend->run("spread", spread_args); }
+  void splat() { backend->run("splat", splat_args); }
+  void blur(BlurPhase phase) { backend->run("blur", phase, blur_args); }
   void blur() {
     for (BlurPhase phase : {BlurPhase::downsample, BlurPhase::horizontal, BlurPhase::vertical, BlurPhase::upsample})
       blur(phase);
   }
-  void blend() { backend->blend(blend_args); }
+  void blend() { backend->run("blend", blend_args); }
   void frame() {
     spread();
     splat();

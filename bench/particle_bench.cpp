@@ -165,10 +165,10 @@ struct Pile {
     backend->synchronize();
   }
 
-  void emit() { backend->particles(ParticlePhase::emit, args); }
-  void bin() { backend->particles(ParticlePhase::bin, args); }
-  void collide() { backend->particles(ParticlePhase::collide, args); }
-  void integrate() { backend->particles(ParticlePhase::integrate, args); }
+  void emit() { backend->run("particles", ParticlePhase::emit, args); }
+  void bin() { backend->run("particles", ParticlePhase::bin, args); }
+  void collide() { backend->run("particles", ParticlePhase::collide, args); }
+  void integrate() { backend->run("particles", ParticlePhase::integrate, args); }
   void step() { emit(); bin(); collide(); integrate(); }
   void all_pairs_collide() {
     if (backend->kind() == BackendKind::cpu) {

@@ -10,6 +10,8 @@
 #include <vector>
 
 #include "bench/bench_util.h"
+#include "core/physics/blend.h"
+#include "core/physics/spread.h"
 #include "core/runtime/backend.h"
 #include "core/runtime/tissue.h"
 
@@ -46,9 +48,9 @@ struct StageScene {
     const Image texture = procedural_tissue(size.width, size.height, 1);
     backend->upload(tissue.data(), texture.rgba.data(), tissue.bytes());
   }
-  void spread() { backend->spread({cuts.as<const SpreadCut>(), cut_count, grid, stain.as<float>()}); }
+  void spread() { backend->run("spread", SpreadArgs{cuts.as<const SpreadCut>(), cut_count, grid, stain.as<float>()}); }
   void blend() {
-    backend->blend({tissue.as<const std::uint8_t>(), stain.as<const float>(), nullptr, nullptr, grid.width, grid.height,
+    backend->run("blend", BlendArgs{tissue.as<const std::uint8_t>(), stain.as<const float>(), nullptr, nullptr, grid.width, grid.height,
                     frame.as<std::uint8_t>()});
   }
 };

@@ -24,7 +24,7 @@ __global__ void blend_kernel(BlendArgs args) {
 
 }  // namespace
 
-void blend_cuda(const BlendArgs& args) {
+void cuda_twin(const BlendArgs& args) {
   const PixelLaunch launch = pixel_launch(args.width, args.height);
   blend_kernel<<<launch.blocks, launch.threads>>>(args);
   check_launch("blend_kernel");

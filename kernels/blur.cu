@@ -23,7 +23,7 @@ __global__ void blur_kernel(BlurPhase phase, BlurArgs a) {
 
 }  // namespace
 
-void blur_cuda(BlurPhase phase, const BlurArgs& a) {
+void cuda_twin(BlurPhase phase, const BlurArgs& a) {
   const bool full = phase == BlurPhase::upsample;
   const PixelLaunch launch = pixel_launch(full ? a.width : a.low_width, full ? a.height : a.low_height);
   blur_kernel<<<launch.blocks, launch.threads>>>(phase, a);

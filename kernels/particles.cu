@@ -76,7 +76,7 @@ std::size_t particle_sort_scratch_cuda(int capacity, int key_bits) {
   return bytes;
 }
 
-void particles_cuda(ParticlePhase phase, const ParticleArgs& a) {
+void cuda_twin(ParticlePhase phase, const ParticleArgs& a) {
   const int n = a.live_count;
   switch (phase) {
     case ParticlePhase::emit:

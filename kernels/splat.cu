@@ -29,7 +29,7 @@ __global__ void thickness_kernel(SplatArgs a) {
 
 }  // namespace
 
-void splat_cuda(const SplatArgs& a) {
+void cuda_twin(const SplatArgs& a) {
   const std::size_t pixels = std::size_t(a.grid.width) * std::size_t(a.grid.height);
   BLEEDSIM_CUDA_CHECK(cudaMemsetAsync(a.units, 0, pixels * sizeof(std::uint64_t)));
   deposit_kernel<<<(a.capacity + kThreads - 1) / kThreads, kThreads>>>(a);

@@ -17,7 +17,7 @@ __global__ void spread_kernel(SpreadArgs args) {
 
 }  // namespace
 
-void spread_cuda(const SpreadArgs& args) {
+void cuda_twin(const SpreadArgs& args) {
   const PixelLaunch launch = pixel_launch(args.grid.width, args.grid.height);
   spread_kernel<<<launch.blocks, launch.threads>>>(args);
   check_launch("spread_kernel");

@@ -6,7 +6,7 @@
 
 namespace bleedsim {
 
-void blend_cpu(const BlendArgs& args, int threads) {
+void cpu_twin(const BlendArgs& args, int threads) {
   parallel_rows(args.height, threads, [&](int j) {
     for (int i = 0; i < args.width; ++i) {
       const std::size_t p = std::size_t(j) * args.width + i;

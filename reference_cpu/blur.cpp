@@ -3,7 +3,7 @@
 
 namespace bleedsim {
 
-void blur_cpu(BlurPhase phase, const BlurArgs& a, int threads) {
+void cpu_twin(BlurPhase phase, const BlurArgs& a, int threads) {
   const auto low_rows = [&](auto value_at, float* out) {
     parallel_rows(a.low_height, threads, [&](int j) {
       for (int i = 0; i < a.low_width; ++i) out[std::size_t(j) * a.low_width + i] = value_at(i, j);

@@ -51,7 +51,7 @@ void bin(const ParticleArgs& a) {
 
 }  // namespace
 
-void particles_cpu(ParticlePhase phase, const ParticleArgs& a, int threads) {
+void cpu_twin(ParticlePhase phase, const ParticleArgs& a, int threads) {
   const int n = a.live_count;
   switch (phase) {
     case ParticlePhase::emit:

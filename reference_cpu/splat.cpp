@@ -5,7 +5,7 @@
 
 namespace bleedsim {
 
-void splat_cpu(const SplatArgs& a, int threads) {
+void cpu_twin(const SplatArgs& a, int threads) {
   const std::size_t pixels = std::size_t(a.grid.width) * std::size_t(a.grid.height);
   std::fill(a.units, a.units + pixels, std::uint64_t(0));
   for (int slot = 0; slot < a.capacity; ++slot)

@@ -6,7 +6,7 @@
 
 namespace bleedsim {
 
-void spread_cpu(const SpreadArgs& args, int threads) {
+void cpu_twin(const SpreadArgs& args, int threads) {
   const PixelGrid& grid = args.grid;
   parallel_rows(grid.height, threads, [&](int j) {
     float* row = args.stain + std::size_t(j) * grid.width;

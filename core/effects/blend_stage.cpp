@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "core/physics/blend.h"
+
 namespace bleedsim {
 namespace {
 
@@ -39,7 +41,7 @@ void BlendStage::run(const Scene& scene, State& state, Backend& backend) {
   // The blurred film when the scene blurs it, the raw splat otherwise.
   const Field* thickness = state.find("blur/thickness");
   if (!thickness) thickness = state.find("splat/thickness");
-  backend.blend(BlendArgs{tissue_.as<const std::uint8_t>(),
+  launch(backend, BlendArgs{tissue_.as<const std::uint8_t>(),
                           stain ? stain->data.as<const float>() : nullptr,
                           thickness ? thickness->data.as<const float>() : nullptr,
                           transmission_.as<const float>(), scene.domain.width_px, scene.domain.height_px,

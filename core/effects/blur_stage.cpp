@@ -58,7 +58,7 @@ std::size_t BlurStage::bytes_for(const Scene& scene) {
 
 void BlurStage::run(const Scene&, State&, Backend& backend) {
   for (BlurPhase phase : {BlurPhase::downsample, BlurPhase::horizontal, BlurPhase::vertical, BlurPhase::upsample})
-    backend.blur(phase, args_);
+    launch(backend, phase, args_);
 }
 
 }  // namespace bleedsim

@@ -118,7 +118,7 @@ void ParticleStage::emit(const Scene& scene, const State& state, Backend& backen
   args_.emitter_count = int(new_.size());
   args_.new_count = int(first_new);
   args_.step = step;
-  backend.particles(ParticlePhase::emit, args_);
+  launch(backend, ParticlePhase::emit, args_);
 }
 
 void ParticleStage::track_live_particles() {
@@ -132,9 +132,9 @@ void ParticleStage::run(const Scene& scene, State& state, Backend& backend) {
     const std::uint64_t step = std::uint64_t(state.frames_done) * substeps + s;
     emit(scene, state, backend, step);
     track_live_particles();
-    backend.particles(ParticlePhase::bin, args_);
-    backend.particles(ParticlePhase::collide, args_);
-    backend.particles(ParticlePhase::integrate, args_);
+    launch(backend, ParticlePhase::bin, args_);
+    launch(backend, ParticlePhase::collide, args_);
+    launch(backend, ParticlePhase::integrate, args_);
     accounting_.end_step(step);
   }
   const ParticleCounts counts = accounting_.counts();

@@ -51,6 +51,6 @@ std::size_t SplatStage::bytes_for(const Scene& scene) {
   return pixels(scene) * (sizeof(std::uint64_t) + sizeof(float));
 }
 
-void SplatStage::run(const Scene&, State&, Backend& backend) { backend.splat(args_); }
+void SplatStage::run(const Scene&, State&, Backend& backend) { launch(backend, args_); }
 
 }  // namespace bleedsim

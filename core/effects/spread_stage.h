@@ -3,6 +3,7 @@
 #include <vector>
 
 #include "core/effects/stage.h"
+#include "core/physics/spread.h"
 
 namespace bleedsim {
 

@@ -30,6 +30,11 @@ class Stage {
 
  protected:
   Buffer allocate(Backend& backend, std::size_t bytes);
+  // Runs a twin pair on the backend, counted as this stage's work (Backend::run).
+  template <class... A>
+  void launch(Backend& backend, const A&... a) const {
+    backend.run(name_, a...);
+  }
   // Adds a field this stage writes to State, allocated on the backend.
   Field& add_field(State& state, Backend& backend, Field field);
 

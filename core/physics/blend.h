@@ -69,7 +69,7 @@ struct BlendArgs {
   int height;
   std::uint8_t* frame_rgba;
 };
-void blend_cpu(const BlendArgs& args, int threads);
-void blend_cuda(const BlendArgs& args);
+void cpu_twin(const BlendArgs& args, int threads);
+void cuda_twin(const BlendArgs& args);
 
 }  // namespace bleedsim

@@ -70,7 +70,7 @@ BLEEDSIM_HD inline float bilinear_up(const BlurArgs& a, int i, int j) {
 
 // The stage's twins, one pass at a time: downsample film → low, horizontal low → across,
 // vertical across → low, upsample low → blurred.
-void blur_cpu(BlurPhase phase, const BlurArgs& args, int threads);
-void blur_cuda(BlurPhase phase, const BlurArgs& args);
+void cpu_twin(BlurPhase phase, const BlurArgs& args, int threads);
+void cuda_twin(BlurPhase phase, const BlurArgs& args);
 
 }  // namespace bleedsim

@@ -286,8 +286,8 @@ BLEEDSIM_HD inline float fade_alpha(const ParticleModel& m, std::uint32_t age) {
 }
 
 // The twins: one phase of a step over host memory (CPU reference) or device memory (CUDA).
-void particles_cpu(ParticlePhase phase, const ParticleArgs& args, int threads);
-void particles_cuda(ParticlePhase phase, const ParticleArgs& args);
+void cpu_twin(ParticlePhase phase, const ParticleArgs& args, int threads);
+void cuda_twin(ParticlePhase phase, const ParticleArgs& args);
 // Bytes of temporary storage the CUDA sort needs for `capacity` keys of `key_bits` bits.
 std::size_t particle_sort_scratch_cuda(int capacity, int key_bits);
 

@@ -77,7 +77,7 @@ BLEEDSIM_HD inline void splat_particle(const SplatArgs& a, int slot, Deposit dep
 BLEEDSIM_HD inline float thickness_from_units(std::uint64_t units) { return float(units) * kSplatUnitMm; }
 
 // The stage's twins: clear the sum, deposit every live particle, convert to millimetres.
-void splat_cpu(const SplatArgs& args, int threads);
-void splat_cuda(const SplatArgs& args);
+void cpu_twin(const SplatArgs& args, int threads);
+void cuda_twin(const SplatArgs& args);
 
 }  // namespace bleedsim

@@ -68,7 +68,7 @@ struct SpreadArgs {
   PixelGrid grid;
   float* stain;  // grid.width × grid.height, row-major
 };
-void spread_cpu(const SpreadArgs& args, int threads);
-void spread_cuda(const SpreadArgs& args);
+void cpu_twin(const SpreadArgs& args, int threads);
+void cuda_twin(const SpreadArgs& args);
 
 }  // namespace bleedsim

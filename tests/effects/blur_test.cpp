@@ -33,7 +33,7 @@ struct Blurred {
     args.across = across.data();
     args.blurred = out.data();
     for (BlurPhase phase : {BlurPhase::downsample, BlurPhase::horizontal, BlurPhase::vertical, BlurPhase::upsample})
-      blur_cpu(phase, args, 2);
+      cpu_twin(phase, args, 2);
   }
 };
 

@@ -215,7 +215,7 @@ double largest_late_speed(double dt_fraction, int steps) {
   double late = 0.0;
   for (int s = 0; s < steps; ++s) {
     for (ParticlePhase phase : {ParticlePhase::bin, ParticlePhase::collide, ParticlePhase::integrate})
-      particles_cpu(phase, args, 1);
+      cpu_twin(phase, args, 1);
     if (s < steps - steps / 10) continue;
     for (int i = 0; i < n; ++i) {
       const double speed = std::hypot(a.velocity[2 * i], a.velocity[2 * i + 1]);

@@ -38,7 +38,7 @@ struct Film {
     thickness.resize(units.size());
     args.units = units.data();
     args.thickness_mm = thickness.data();
-    splat_cpu(args, 2);
+    cpu_twin(args, 2);
   }
   double volume_mm3() const {
     const double pixel_area = 0.01 * 0.01;
