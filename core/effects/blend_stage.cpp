@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "core/physics/blend.h"
+#include "core/physics/pixel_kernels.h"
 
 namespace bleedsim {
 namespace {
@@ -41,11 +41,9 @@ void BlendStage::run(const Scene& scene, State& state, Backend& backend) {
   // The blurred film when the scene blurs it, the raw splat otherwise.
   const Field* thickness = state.find("blur/thickness");
   if (!thickness) thickness = state.find("splat/thickness");
-  launch(backend, BlendArgs{tissue_.as<const std::uint8_t>(),
-                          stain ? stain->data.as<const float>() : nullptr,
-                          thickness ? thickness->data.as<const float>() : nullptr,
-                          transmission_.as<const float>(), scene.domain.width_px, scene.domain.height_px,
-                          frame_.data.as<std::uint8_t>()});
+  launch(backend, BlendPixel{tissue_.as<const std::uint8_t>(), stain ? stain->data.as<const float>() : nullptr,
+                             thickness ? thickness->data.as<const float>() : nullptr,
+                             transmission_.as<const float>(), scene.domain.grid(), frame_.data.as<std::uint8_t>()});
 }
 
 }  // namespace bleedsim

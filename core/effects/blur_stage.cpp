@@ -3,6 +3,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/physics/pixel_kernels.h"
+
 namespace bleedsim {
 namespace {
 
@@ -57,8 +59,7 @@ std::size_t BlurStage::bytes_for(const Scene& scene) {
 }
 
 void BlurStage::run(const Scene&, State&, Backend& backend) {
-  for (BlurPhase phase : {BlurPhase::downsample, BlurPhase::horizontal, BlurPhase::vertical, BlurPhase::upsample})
-    launch(backend, phase, args_);
+  blur_passes(args_).each([&](const auto& pass) { launch(backend, pass); });
 }
 
 }  // namespace bleedsim

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "core/effects/particle_model.h"
+#include "core/physics/splat.h"
 
 namespace bleedsim {
 namespace {

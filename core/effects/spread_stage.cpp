@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "core/physics/pixel_kernels.h"
+
 namespace bleedsim {
 namespace {
 
@@ -40,8 +42,8 @@ void SpreadStage::run(const Scene& scene, State& state, Backend& backend) {
   const std::size_t needed = active_.size() * sizeof(SpreadCut);
   if (needed > cuts_.bytes()) cuts_ = allocate(backend, 2 * needed);
   if (needed > 0) backend.upload(cuts_.data(), active_.data(), needed);
-  launch(backend, SpreadArgs{cuts_.as<const SpreadCut>(), static_cast<int>(active_.size()),
-                            scene.domain.grid(), stain_.data.as<float>()});
+  launch(backend, SpreadPixel{cuts_.as<const SpreadCut>(), static_cast<int>(active_.size()), scene.domain.grid(),
+                              stain_.data.as<float>()});
 }
 
 }  // namespace bleedsim

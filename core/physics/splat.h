@@ -76,7 +76,24 @@ BLEEDSIM_HD inline void splat_particle(const SplatArgs& a, int slot, Deposit dep
 
 BLEEDSIM_HD inline float thickness_from_units(std::uint64_t units) { return float(units) * kSplatUnitMm; }
 
-// The stage's twins: clear the sum, deposit every live particle, convert to millimetres.
+// The sum converted to millimetres, pixel by pixel (core/physics/pixel_kernels.h runs it).
+struct SplatThickness {
+  PixelGrid grid;
+  const std::uint64_t* units;
+  float* thickness_mm;
+
+  BLEEDSIM_HD int width() const { return grid.width; }
+  BLEEDSIM_HD int height() const { return grid.height; }
+  BLEEDSIM_HD void operator()(int i, int j) const {
+    const std::size_t p = std::size_t(j) * grid.width + i;
+    thickness_mm[p] = thickness_from_units(units[p]);
+  }
+};
+
+inline SplatThickness splat_thickness(const SplatArgs& a) { return {a.grid, a.units, a.thickness_mm}; }
+
+// The stage's twins: clear the sum, deposit every live particle (a loop on the CPU, integer atomics
+// on the GPU), then SplatThickness's twin.
 void cpu_twin(const SplatArgs& args, int threads);
 void cuda_twin(const SplatArgs& args);
 
