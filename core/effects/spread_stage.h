@@ -7,10 +7,11 @@
 
 namespace bleedsim {
 
+// (cuts, frame time) => spread/stain
 // Each frame: the cuts' amplitudes at the frame time (host), then the stain field (backend).
 class SpreadStage final : public Stage {
  public:
-  SpreadStage(const Scene& scene, State& state, Backend& backend);
+  SpreadStage(const StageKind& kind, const Scene& scene, State& state, Backend& backend);
   static std::size_t bytes_for(const Scene& scene);
   void run(const Scene& scene, State& state, Backend& backend) override;
 
