@@ -134,7 +134,7 @@ struct FrameScene {
     // The splat, as SplatStage sets it up.
     units = backend->allocate(pixels * sizeof(std::uint64_t));
     film = backend->allocate(pixels * sizeof(float));
-    splat_args.particles = make_particle_model(scene);
+    splat_args.lifetime = particle_lifetime(scene);
     splat_args.splat = make_splat_model(*scene.particles);
     splat_args.capacity = n;
     splat_args.grid = grid;

@@ -121,8 +121,8 @@ struct Pile {
     a.velocity = velocity.as<float>();
     a.age = age.as<std::uint32_t>();
     const std::size_t sort_bytes = backend->particle_sort_scratch_bytes(n, model.key_bits);
-    scratch = backend->allocate(particle_scratch_bytes(model, n, sort_bytes));
-    point_particle_scratch(a, model, scratch.data(), sort_bytes);
+    scratch = backend->allocate(particle_scratch_bytes(cell_count(model), n, sort_bytes));
+    point_particle_scratch(a, cell_count(model), scratch.data(), sort_bytes);
     clear_particles(*backend, a);  // every slot at rest; scratch defined
 
     // The lattice: slot s in row s / columns (row 0 at the bottom), spacing one diameter, age 0.

@@ -52,7 +52,7 @@ void sort_by_cell(const ParticleArrays& p, const ParticleModel& m) {
 
 void bin(const ParticleArgs& a) {
   const ParticleArrays& p = a.arrays;
-  const std::size_t cells = std::size_t(a.model.cells_x) * std::size_t(a.model.cells_y);
+  const std::size_t cells = cell_count(a.model);
   cell_key_kernel<<<blocks_for(p.capacity), kThreads>>>(p, a.model);
   check_launch("cell_key_kernel");
   sort_by_cell(p, a.model);

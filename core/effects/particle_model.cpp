@@ -84,6 +84,18 @@ SettingsProblem particle_settings_problem(const Scene& scene) {
   return {};
 }
 
+ParticleLifetime particle_lifetime(const Scene& scene) {
+  const ParticleParams& p = *scene.particles;
+  const double steps_per_s = particle_steps_per_s(scene);
+  const std::uint32_t steps = steps_in(p.lifetime_s, steps_per_s);
+  return {steps, std::min(steps, steps_in(p.fade_s, steps_per_s))};
+}
+
+std::size_t particle_cell_count(const Scene& scene) {
+  const double cell = cell_edge_mm(*scene.particles);
+  return std::size_t(cells_along(scene.domain.width_mm, cell)) * std::size_t(cells_along(scene.domain.height_mm, cell));
+}
+
 ParticleModel make_particle_model(const Scene& scene) {
   const ParticleParams& p = *scene.particles;
   const double steps_per_s = particle_steps_per_s(scene);
@@ -111,8 +123,7 @@ ParticleModel make_particle_model(const Scene& scene) {
   m.cells_y = cells_along(scene.domain.height_mm, cell);
   m.max_per_cell = p.max_per_cell;
   m.key_bits = bits_for(std::uint32_t(m.cells_x) * std::uint32_t(m.cells_y));
-  m.lifetime_steps = steps_in(p.lifetime_s, steps_per_s);
-  m.fade_steps = std::min(m.lifetime_steps, steps_in(p.fade_s, steps_per_s));
+  m.lifetime = particle_lifetime(scene);
   m.jitter_mm = float(p.jitter_mm);
   m.velocity_x = float(p.velocity_x_mm_s);
   m.velocity_y = float(p.velocity_y_mm_s);

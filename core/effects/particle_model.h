@@ -36,7 +36,11 @@ struct SettingsProblem {
 };
 SettingsProblem particle_settings_problem(const Scene& scene);
 
-// Requires scene.particles.
+// The rest require scene.particles.
 ParticleModel make_particle_model(const Scene& scene);
+// Parts of the model, for what needs no more of it: the lifetime (the splat's), and the number of
+// cells of the collision grid (cell_count() of the model; the memory estimate's).
+ParticleLifetime particle_lifetime(const Scene& scene);
+std::size_t particle_cell_count(const Scene& scene);
 
 }  // namespace bleedsim

@@ -23,10 +23,10 @@ std::uint64_t emitted_by(const Cut& cut, double t) {
 }  // namespace
 
 ParticleStage::ParticleStage(const StageKind& kind, const Scene& scene, State& state, Backend& backend)
-    : Stage(kind),
-      accounting_(std::uint64_t(scene.particles->capacity), make_particle_model(scene).lifetime_steps) {
+    : Stage(kind), accounting_(std::uint64_t(scene.particles->capacity), particle_lifetime(scene).steps) {
   const int capacity = scene.particles->capacity;
-  const ParticleModel model = make_particle_model(scene);
+  args_.model = make_particle_model(scene);
+  const ParticleModel& model = args_.model;
   ParticleArrays& a = args_.arrays;
   a.capacity = capacity;
   Field& position = add_field(scene, state, backend, "particles/position", capacity);
@@ -37,11 +37,10 @@ ParticleStage::ParticleStage(const StageKind& kind, const Scene& scene, State& s
   a.position = position.data.as<float>();
   a.velocity = velocity.data.as<float>();
   a.age = age.data.as<std::uint32_t>();
-  args_.model = model;
 
   const std::size_t sort_bytes = backend.particle_sort_scratch_bytes(capacity, model.key_bits);
-  scratch_ = allocate(backend, particle_scratch_bytes(model, capacity, sort_bytes));
-  point_particle_scratch(a, model, scratch_.data(), sort_bytes);
+  scratch_ = allocate(backend, particle_scratch_bytes(cell_count(model), capacity, sort_bytes));
+  point_particle_scratch(a, cell_count(model), scratch_.data(), sort_bytes);
   emitters_ = allocate(backend, std::max(kInitialEmitters, scene.cuts.size()) * sizeof(Emitter));
 
   clear_particles(backend, a);
@@ -51,10 +50,9 @@ ParticleStage::ParticleStage(const StageKind& kind, const Scene& scene, State& s
 
 std::size_t ParticleStage::bytes_for(const Scene& scene) {
   const std::size_t n = std::size_t(scene.particles->capacity);
-  const ParticleModel model = make_particle_model(scene);
   const std::size_t fields = n * (2 * sizeof(float) + 2 * sizeof(float) + sizeof(std::uint32_t)) +
                              sizeof(ParticleCounts);
-  return fields + particle_scratch_bytes(model, scene.particles->capacity, sort_scratch_bound(n)) +
+  return fields + particle_scratch_bytes(particle_cell_count(scene), int(n), sort_scratch_bound(n)) +
          std::max(kInitialEmitters, scene.cuts.size()) * sizeof(Emitter);
 }
 

@@ -28,7 +28,7 @@ SplatStage::SplatStage(const StageKind& kind, const Scene& scene, State& state, 
   const Field& position = input(scene, state, "particles/position");
   const Field& age = input(scene, state, "particles/age");
   Field& thickness = add_field(scene, state, backend, "splat/thickness");
-  args_.particles = make_particle_model(scene);
+  args_.lifetime = particle_lifetime(scene);
   args_.splat = make_splat_model(*scene.particles);
   args_.position = position.data.as<const float>();
   args_.age = age.data.as<const std::uint32_t>();

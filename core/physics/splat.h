@@ -32,7 +32,7 @@ struct SplatModel {
 };
 
 struct SplatArgs {
-  ParticleModel particles;  // lifetime and fade
+  ParticleLifetime lifetime;
   SplatModel splat;
   const float* position;    // the ring buffer's slots
   const std::uint32_t* age;
@@ -53,7 +53,7 @@ BLEEDSIM_HD inline float splat_weight(const SplatModel& s, float d2) {
 template <class Deposit>
 BLEEDSIM_HD inline void splat_particle(const SplatArgs& a, int slot, Deposit deposit) {
   const std::uint32_t age = a.age[slot];
-  if (!is_alive(a.particles, age)) return;
+  if (!is_alive(a.lifetime, age)) return;
   const PixelGrid& g = a.grid;
   const float x = a.position[2 * slot], y = a.position[2 * slot + 1];
   const float w = float(g.width), h = float(g.height), r = a.splat.radius_mm;
@@ -62,7 +62,7 @@ BLEEDSIM_HD inline void splat_particle(const SplatArgs& a, int slot, Deposit dep
   const int i1 = int(clamp_float(floorf((x + r) / g.mm_per_px_x - 0.5f), -1.0f, w - 1.0f));
   const int j0 = int(clamp_float(ceilf((y - r) / g.mm_per_px_y - 0.5f), 0.0f, h));
   const int j1 = int(clamp_float(floorf((y + r) / g.mm_per_px_y - 0.5f), -1.0f, h - 1.0f));
-  const float centre_units = a.splat.particle_volume_mm3 * fade_alpha(a.particles, age) * a.splat.units_per_volume;
+  const float centre_units = a.splat.particle_volume_mm3 * fade_alpha(a.lifetime, age) * a.splat.units_per_volume;
   for (int j = j0; j <= j1; ++j) {
     const float dy = pixel_centre_y_mm(g, j) - y;
     for (int i = i0; i <= i1; ++i) {
