@@ -28,6 +28,7 @@
 #include <vector>
 
 #include "bench/bench_util.h"
+#include "core/physics/pixel_kernels.h"
 #include "core/runtime/backend.h"
 #include "core/effects/blur_stage.h"
 #include "core/effects/particle_model.h"
@@ -100,10 +101,10 @@ struct FrameScene {
   double film_share = 0.0;     // ... and the share of the panel it covers
 
   Buffer position, age, units, film, weights, low, across, blurred, cuts, stain, tissue, transmission, frame_rgba;
-  SpreadArgs spread_args{};
+  SpreadPixel spread_work{};
   SplatArgs splat_args{};
   BlurArgs blur_args{};
-  BlendArgs blend_args{};
+  BlendPixel blend_work{};
 
   FrameScene(std::unique_ptr<Backend> b, const Size& s, int count)
       : backend(std::move(b)), size(s), n(count), scene(frame_scene(s, count)) {
@@ -133,7 +134,7 @@ struct FrameScene {
     // The splat, as SplatStage sets it up.
     units = backend->allocate(pixels * sizeof(std::uint64_t));
     film = backend->allocate(pixels * sizeof(float));
-    splat_args.particles = make_particle_model(scene);
+    splat_args.lifetime = particle_lifetime(scene);
     splat_args.splat = make_splat_model(*scene.particles);
     splat_args.capacity = n;
     splat_args.grid = grid;
@@ -177,7 +178,7 @@ struct FrameScene {
     cuts = backend->allocate(host_cuts.size() * sizeof(SpreadCut));
     backend->upload(cuts.data(), host_cuts.data(), cuts.bytes());
     stain = backend->allocate(pixels * sizeof(float));
-    spread_args = {cuts.as<const SpreadCut>(), kCutCount, grid, stain.as<float>()};
+    spread_work = {cuts.as<const SpreadCut>(), kCutCount, grid, stain.as<float>()};
 
     // The blend, as BlendStage runs it in a scene with a blurred film: stain and blur/thickness
     // over the procedural tissue, through the Beer–Lambert table.
@@ -189,8 +190,8 @@ struct FrameScene {
     transmission = backend->allocate(table.size() * sizeof(float));
     backend->upload(transmission.data(), table.data(), transmission.bytes());
     frame_rgba = backend->allocate(pixels * 4);
-    blend_args = {tissue.as<const std::uint8_t>(), stain.as<const float>(), blurred.as<const float>(),
-                  transmission.as<const float>(), grid.width, grid.height, frame_rgba.as<std::uint8_t>()};
+    blend_work = {tissue.as<const std::uint8_t>(), stain.as<const float>(), blurred.as<const float>(),
+                  transmission.as<const float>(), grid, frame_rgba.as<std::uint8_t>()};
 
     // One frame, to see that the film is there.
     frame();
@@ -204,14 +205,12 @@ struct FrameScene {
     film_share = double(covered) / double(pixels);
   }
 
-  void spread() { backend->spread(spread_args); }
-  void splat() { backend->splat(splat_args); }
-  void blur(BlurPhase phase) { backend->blur(phase, blur_args); }
-  void blur() {
-    for (BlurPhase phase : {BlurPhase::downsample, BlurPhase::horizontal, BlurPhase::vertical, BlurPhase::upsample})
-      blur(phase);
-  }
-  void blend() { backend->blend(blend_args); }
+  void spread() { backend->run("spread", spread_work); }
+  void splat() { backend->run("splat", splat_args); }
+  template <class Pass>
+  void blur(const Pass& pass) { backend->run("blur", pass); }
+  void blur() { blur_passes(blur_args).each([&](const auto& pass) { blur(pass); }); }
+  void blend() { backend->run("blend", blend_work); }
   void frame() {
     spread();
     splat();
@@ -222,10 +221,10 @@ struct FrameScene {
     switch (work) {
       case Work::spread: spread(); break;
       case Work::splat: splat(); break;
-      case Work::downsample: blur(BlurPhase::downsample); break;
-      case Work::horizontal: blur(BlurPhase::horizontal); break;
-      case Work::vertical: blur(BlurPhase::vertical); break;
-      case Work::upsample: blur(BlurPhase::upsample); break;
+      case Work::downsample: blur(blur_passes(blur_args).downsample); break;
+      case Work::horizontal: blur(blur_passes(blur_args).horizontal); break;
+      case Work::vertical: blur(blur_passes(blur_args).vertical); break;
+      case Work::upsample: blur(blur_passes(blur_args).upsample); break;
       case Work::blur: blur(); break;
       case Work::blend: blend(); break;
       case Work::frame: frame(); break;

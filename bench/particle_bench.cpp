@@ -121,8 +121,8 @@ struct Pile {
     a.velocity = velocity.as<float>();
     a.age = age.as<std::uint32_t>();
     const std::size_t sort_bytes = backend->particle_sort_scratch_bytes(n, model.key_bits);
-    scratch = backend->allocate(particle_scratch_bytes(model, n, sort_bytes));
-    point_particle_scratch(a, model, scratch.data(), sort_bytes);
+    scratch = backend->allocate(particle_scratch_bytes(cell_count(model), n, sort_bytes));
+    point_particle_scratch(a, cell_count(model), scratch.data(), sort_bytes);
     clear_particles(*backend, a);  // every slot at rest; scratch defined
 
     // The lattice: slot s in row s / columns (row 0 at the bottom), spacing one diameter, age 0.
@@ -165,10 +165,10 @@ struct Pile {
     backend->synchronize();
   }
 
-  void emit() { backend->particles(ParticlePhase::emit, args); }
-  void bin() { backend->particles(ParticlePhase::bin, args); }
-  void collide() { backend->particles(ParticlePhase::collide, args); }
-  void integrate() { backend->particles(ParticlePhase::integrate, args); }
+  void emit() { backend->run("particles", ParticlePhase::emit, args); }
+  void bin() { backend->run("particles", ParticlePhase::bin, args); }
+  void collide() { backend->run("particles", ParticlePhase::collide, args); }
+  void integrate() { backend->run("particles", ParticlePhase::integrate, args); }
   void step() { emit(); bin(); collide(); integrate(); }
   void all_pairs_collide() {
     if (backend->kind() == BackendKind::cpu) {

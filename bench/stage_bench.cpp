@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "bench/bench_util.h"
+#include "core/physics/pixel_kernels.h"
 #include "core/runtime/backend.h"
 #include "core/runtime/tissue.h"
 
@@ -46,10 +47,10 @@ struct StageScene {
     const Image texture = procedural_tissue(size.width, size.height, 1);
     backend->upload(tissue.data(), texture.rgba.data(), tissue.bytes());
   }
-  void spread() { backend->spread({cuts.as<const SpreadCut>(), cut_count, grid, stain.as<float>()}); }
+  void spread() { backend->run("spread", SpreadPixel{cuts.as<const SpreadCut>(), cut_count, grid, stain.as<float>()}); }
   void blend() {
-    backend->blend({tissue.as<const std::uint8_t>(), stain.as<const float>(), nullptr, nullptr, grid.width, grid.height,
-                    frame.as<std::uint8_t>()});
+    backend->run("blend", BlendPixel{tissue.as<const std::uint8_t>(), stain.as<const float>(), nullptr, nullptr, grid,
+                                     frame.as<std::uint8_t>()});
   }
 };
 

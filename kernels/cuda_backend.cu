@@ -1,10 +1,11 @@
-// The CUDA backend: device memory, and launches of the stage kernels in this folder.
+// The CUDA backend: device memory; Backend::run calls the CUDA twins (the launches in this folder).
 #include <cuda_runtime.h>
 
 #include <cstdio>
 #include <stdexcept>
 #include <string>
 
+#include "core/physics/particles.h"
 #include "core/runtime/backend.h"
 #include "kernels/cuda_check.h"
 
@@ -84,11 +85,6 @@ class CudaBackend final : public Backend {
     return data;
   }
   void release_raw(void* data) override { cudaFree(data); }
-  void run_spread(const SpreadArgs& args) override { spread_cuda(args); }
-  void run_blend(const BlendArgs& args) override { blend_cuda(args); }
-  void run_particles(ParticlePhase phase, const ParticleArgs& args) override { particles_cuda(phase, args); }
-  void run_splat(const SplatArgs& args) override { splat_cuda(args); }
-  void run_blur(BlurPhase phase, const BlurArgs& args) override { blur_cuda(phase, args); }
 
  private:
   int device_ = 0;

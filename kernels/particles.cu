@@ -52,7 +52,7 @@ void sort_by_cell(const ParticleArrays& p, const ParticleModel& m) {
 
 void bin(const ParticleArgs& a) {
   const ParticleArrays& p = a.arrays;
-  const std::size_t cells = std::size_t(a.model.cells_x) * std::size_t(a.model.cells_y);
+  const std::size_t cells = cell_count(a.model);
   cell_key_kernel<<<blocks_for(p.capacity), kThreads>>>(p, a.model);
   check_launch("cell_key_kernel");
   sort_by_cell(p, a.model);
@@ -76,7 +76,7 @@ std::size_t particle_sort_scratch_cuda(int capacity, int key_bits) {
   return bytes;
 }
 
-void particles_cuda(ParticlePhase phase, const ParticleArgs& a) {
+void cuda_twin(ParticlePhase phase, const ParticleArgs& a) {
   const int n = a.live_count;
   switch (phase) {
     case ParticlePhase::emit:

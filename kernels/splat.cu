@@ -1,8 +1,10 @@
+// The CUDA twin of the splat: a thread per slot deposits with integer atomics, then the per-pixel
+// conversion.
 #include <cstddef>
 
+#include "core/physics/pixel_kernels.h"
 #include "core/physics/splat.h"
 #include "kernels/cuda_check.h"
-#include "kernels/pixel_launch.h"
 
 namespace bleedsim {
 namespace {
@@ -19,24 +21,14 @@ __global__ void deposit_kernel(SplatArgs a) {
   });
 }
 
-__global__ void thickness_kernel(SplatArgs a) {
-  const int i = blockIdx.x * blockDim.x + threadIdx.x;
-  const int j = blockIdx.y * blockDim.y + threadIdx.y;
-  if (i >= a.grid.width || j >= a.grid.height) return;
-  const std::size_t p = std::size_t(j) * a.grid.width + i;
-  a.thickness_mm[p] = thickness_from_units(a.units[p]);
-}
-
 }  // namespace
 
-void splat_cuda(const SplatArgs& a) {
+void cuda_twin(const SplatArgs& a) {
   const std::size_t pixels = std::size_t(a.grid.width) * std::size_t(a.grid.height);
   BLEEDSIM_CUDA_CHECK(cudaMemsetAsync(a.units, 0, pixels * sizeof(std::uint64_t)));
   deposit_kernel<<<(a.capacity + kThreads - 1) / kThreads, kThreads>>>(a);
   check_launch("deposit_kernel");
-  const PixelLaunch launch = pixel_launch(a.grid.width, a.grid.height);
-  thickness_kernel<<<launch.blocks, launch.threads>>>(a);
-  check_launch("thickness_kernel");
+  cuda_twin(splat_thickness(a));
 }
 
 }  // namespace bleedsim

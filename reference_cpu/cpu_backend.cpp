@@ -1,4 +1,4 @@
-// The CPU reference backend: host memory, and the stage loops in this folder.
+// The CPU reference backend: host memory; Backend::run calls the CPU twins (the loops in this folder).
 #include <chrono>
 #include <cstdlib>
 #include <cstring>
@@ -24,11 +24,11 @@ std::string cpu_model() {
 class CpuBackend final : public Backend {
  public:
   explicit CpuBackend(int threads)
-      : threads_(threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()))) {}
+      : Backend(threads > 0 ? threads : int(std::max(1u, std::thread::hardware_concurrency()))) {}
 
   BackendKind kind() const override { return BackendKind::cpu; }
   std::string device_name() const override {
-    return cpu_model() + ", " + std::to_string(threads_) + (threads_ == 1 ? " thread" : " threads");
+    return cpu_model() + ", " + std::to_string(cpu_threads_) + (cpu_threads_ == 1 ? " thread" : " threads");
   }
   void upload(void* dst, const void* src, std::size_t bytes) override { std::memcpy(dst, src, bytes); }
   void download(void* dst, const void* src, std::size_t bytes) override { std::memcpy(dst, src, bytes); }
@@ -49,16 +49,6 @@ class CpuBackend final : public Backend {
     return data;
   }
   void release_raw(void* data) override { std::free(data); }
-  void run_spread(const SpreadArgs& args) override { spread_cpu(args, threads_); }
-  void run_blend(const BlendArgs& args) override { blend_cpu(args, threads_); }
-  void run_particles(ParticlePhase phase, const ParticleArgs& args) override {
-    particles_cpu(phase, args, threads_);
-  }
-  void run_splat(const SplatArgs& args) override { splat_cpu(args, threads_); }
-  void run_blur(BlurPhase phase, const BlurArgs& args) override { blur_cpu(phase, args, threads_); }
-
- private:
-  int threads_;
 };
 
 }  // namespace

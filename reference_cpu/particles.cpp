@@ -28,7 +28,7 @@ void for_live_slots_in_order(const ParticleArgs& a, const Fn& fn) {
 void bin(const ParticleArgs& a) {
   const ParticleArrays& p = a.arrays;
   const ParticleModel& m = a.model;
-  const std::uint32_t cells = sentinel_key(m);
+  const std::uint32_t cells = cell_count(m);
   // Count per cell, then each cell's start; cell_end serves as the write cursor and ends as the end.
   std::fill(p.cell_end, p.cell_end + cells, 0u);
   for_live_slots_in_order(a, [&](int slot) {
@@ -51,7 +51,7 @@ void bin(const ParticleArgs& a) {
 
 }  // namespace
 
-void particles_cpu(ParticlePhase phase, const ParticleArgs& a, int threads) {
+void cpu_twin(ParticlePhase phase, const ParticleArgs& a, int threads) {
   const int n = a.live_count;
   switch (phase) {
     case ParticlePhase::emit:

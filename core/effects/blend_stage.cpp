@@ -2,29 +2,41 @@
 
 #include <cmath>
 
+#include "core/physics/pixel_kernels.h"
+
 namespace bleedsim {
 namespace {
 
 std::size_t rgba_bytes(const Scene& scene) { return std::size_t(scene.domain.pixel_count()) * 4; }
 
 std::size_t transmission_bytes(const Scene& scene) {
-  return scene.particles ? kTransmissionEntries * sizeof(float) : 0;
+  return blend_film_field(scene) ? kTransmissionEntries * sizeof(float) : 0;
 }
 
 }  // namespace
+
+const char* blend_stain_field(const Scene& scene) { return scene.spread ? "spread/stain" : nullptr; }
+
+const char* blend_film_field(const Scene& scene) {
+  return scene.blur ? "blur/thickness" : scene.particles ? "splat/thickness" : nullptr;
+}
 
 void fill_transmission_table(float* table) {
   for (int k = 0; k < kTransmissionEntries; ++k)
     table[k] = static_cast<float>(std::exp(-double(k) / kTransmissionStepsPerUnit));
 }
 
-BlendStage::BlendStage(const Scene& scene, State& state, Backend& backend)
-    : Stage("blend"),
-      frame_(add_field(state, backend,
-                       image_field(scene, "frame", ElementType::u8, 4, "sRGB 8-bit",
-                                   "the rendered frame: blood composited over the tissue (RGBA)"))),
+BlendStage::BlendStage(const StageKind& kind, const Scene& scene, State& state, Backend& backend)
+    : Stage(kind),
       tissue_(allocate(backend, rgba_bytes(scene))),
       transmission_(allocate(backend, transmission_bytes(scene))) {
+  const auto input_or_null = [&](const char* name) {
+    return name ? input(scene, state, name).data.as<const float>() : nullptr;
+  };
+  Field& frame = add_field(scene, state, backend, "frame");
+  work_ = BlendPixel{tissue_.as<const std::uint8_t>(), input_or_null(blend_stain_field(scene)),
+                     input_or_null(blend_film_field(scene)), transmission_.as<const float>(), scene.domain.grid(),
+                     frame.data.as<std::uint8_t>()};
   backend.upload(tissue_.data(), scene.tissue.rgba.data(), rgba_bytes(scene));
   if (transmission_.bytes() == 0) return;
   float table[kTransmissionEntries];
@@ -34,16 +46,6 @@ BlendStage::BlendStage(const Scene& scene, State& state, Backend& backend)
 
 std::size_t BlendStage::bytes_for(const Scene& scene) { return 2 * rgba_bytes(scene) + transmission_bytes(scene); }
 
-void BlendStage::run(const Scene& scene, State& state, Backend& backend) {
-  const Field* stain = state.find("spread/stain");
-  // The blurred film when the scene blurs it, the raw splat otherwise.
-  const Field* thickness = state.find("blur/thickness");
-  if (!thickness) thickness = state.find("splat/thickness");
-  backend.blend(BlendArgs{tissue_.as<const std::uint8_t>(),
-                          stain ? stain->data.as<const float>() : nullptr,
-                          thickness ? thickness->data.as<const float>() : nullptr,
-                          transmission_.as<const float>(), scene.domain.width_px, scene.domain.height_px,
-                          frame_.data.as<std::uint8_t>()});
-}
+void BlendStage::run(const Scene&, State&, Backend& backend) { launch(backend, work_); }
 
 }  // namespace bleedsim

@@ -1,7 +1,8 @@
 #include "core/effects/blur_stage.h"
 
 #include <cmath>
-#include <stdexcept>
+
+#include "core/physics/pixel_kernels.h"
 
 namespace bleedsim {
 namespace {
@@ -24,17 +25,13 @@ std::vector<float> gaussian_weights(int radius, double sigma) {
   return weights;
 }
 
-BlurStage::BlurStage(const Scene& scene, State& state, Backend& backend)
-    : Stage("blur"),
+BlurStage::BlurStage(const StageKind& kind, const Scene& scene, State& state, Backend& backend)
+    : Stage(kind),
       weights_(allocate(backend, (2 * std::size_t(scene.blur->radius_px) + 1) * sizeof(float))),
       low_(allocate(backend, low_pixels(scene) * sizeof(float))),
       across_(allocate(backend, low_pixels(scene) * sizeof(float))) {
-  const Field* film = state.find("splat/thickness");
-  if (!film) throw std::logic_error("the blur needs the splat stage's splat/thickness");
-  Field& blurred = add_field(state, backend,
-                             image_field(scene, "blur/thickness", ElementType::f32, 1, "mm",
-                                         "the film of blood downsampled, blurred and upsampled: what the "
-                                         "blend lays over the tissue"));
+  const Field& film = input(scene, state, "splat/thickness");
+  Field& blurred = add_field(scene, state, backend, "blur/thickness");
   const BlurParams& b = *scene.blur;
   const std::vector<float> weights = gaussian_weights(b.radius_px, b.sigma_px);
   backend.upload(weights_.data(), weights.data(), weights.size() * sizeof(float));
@@ -45,7 +42,7 @@ BlurStage::BlurStage(const Scene& scene, State& state, Backend& backend)
   args_.low_height = low_size(args_.height, b.downsample);
   args_.radius = b.radius_px;
   args_.weights = weights_.as<const float>();
-  args_.film = film->data.as<const float>();
+  args_.film = film.data.as<const float>();
   args_.low = low_.as<float>();
   args_.across = across_.as<float>();
   args_.blurred = blurred.data.as<float>();
@@ -57,8 +54,7 @@ std::size_t BlurStage::bytes_for(const Scene& scene) {
 }
 
 void BlurStage::run(const Scene&, State&, Backend& backend) {
-  for (BlurPhase phase : {BlurPhase::downsample, BlurPhase::horizontal, BlurPhase::vertical, BlurPhase::upsample})
-    backend.blur(phase, args_);
+  blur_passes(args_).each([&](const auto& pass) { launch(backend, pass); });
 }
 
 }  // namespace bleedsim

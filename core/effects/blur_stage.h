@@ -7,11 +7,12 @@
 
 namespace bleedsim {
 
-// Each frame, in scenes with particles and [blur]: the film downsampled, blurred across and down,
-// and upsampled into blur/thickness, which the blend then uses instead of the raw film.
+// (splat/thickness) => blur/thickness
+// Each frame, in scenes with [blur]: the film downsampled, blurred across and down, and upsampled,
+// which the blend then lays over the tissue instead of the raw film.
 class BlurStage final : public Stage {
  public:
-  BlurStage(const Scene& scene, State& state, Backend& backend);
+  BlurStage(const StageKind& kind, const Scene& scene, State& state, Backend& backend);
   static std::size_t bytes_for(const Scene& scene);
   void run(const Scene& scene, State& state, Backend& backend) override;
 

@@ -11,9 +11,8 @@ struct ScratchLayout {
   std::size_t acceleration, cell_key, slot_index, sorted_key, sorted_slot, sorted_position,
       sorted_velocity, cell_start, cell_end, sort_scratch, total;
 
-  ScratchLayout(const ParticleModel& m, int capacity, std::size_t sort_scratch_bytes) {
+  ScratchLayout(std::size_t cells, int capacity, std::size_t sort_scratch_bytes) {
     const std::size_t n = std::size_t(capacity);
-    const std::size_t cells = std::size_t(m.cells_x) * std::size_t(m.cells_y);
     std::size_t at = 0;
     const auto take = [&](std::size_t bytes) {
       const std::size_t here = at;
@@ -41,13 +40,12 @@ T* at_offset(void* base, std::size_t offset) {
 
 }  // namespace
 
-std::size_t particle_scratch_bytes(const ParticleModel& model, int capacity, std::size_t sort_scratch_bytes) {
-  return ScratchLayout(model, capacity, sort_scratch_bytes).total;
+std::size_t particle_scratch_bytes(std::size_t cells, int capacity, std::size_t sort_scratch_bytes) {
+  return ScratchLayout(cells, capacity, sort_scratch_bytes).total;
 }
 
-void point_particle_scratch(ParticleArrays& a, const ParticleModel& model, void* base,
-                            std::size_t sort_scratch_bytes) {
-  const ScratchLayout layout(model, a.capacity, sort_scratch_bytes);
+void point_particle_scratch(ParticleArrays& a, std::size_t cells, void* base, std::size_t sort_scratch_bytes) {
+  const ScratchLayout layout(cells, a.capacity, sort_scratch_bytes);
   a.acceleration = at_offset<float>(base, layout.acceleration);
   a.cell_key = at_offset<std::uint32_t>(base, layout.cell_key);
   a.slot_index = at_offset<std::uint32_t>(base, layout.slot_index);

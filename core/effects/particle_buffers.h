@@ -9,11 +9,11 @@
 namespace bleedsim {
 
 // Bytes of every ParticleArrays member that is not state (position, velocity, age), for
-// `capacity` particles of `model` with `sort_scratch_bytes` of sort storage.
-std::size_t particle_scratch_bytes(const ParticleModel& model, int capacity, std::size_t sort_scratch_bytes);
+// `capacity` particles on a grid of `cells` cells (cell_count() of the model) with
+// `sort_scratch_bytes` of sort storage.
+std::size_t particle_scratch_bytes(std::size_t cells, int capacity, std::size_t sort_scratch_bytes);
 // Points those members into `base`, which holds particle_scratch_bytes() bytes.
-void point_particle_scratch(ParticleArrays& arrays, const ParticleModel& model, void* base,
-                            std::size_t sort_scratch_bytes);
+void point_particle_scratch(ParticleArrays& arrays, std::size_t cells, void* base, std::size_t sort_scratch_bytes);
 // An empty ring: every slot at the origin, at rest and never used; the sort's values 0, 1, 2, ….
 // Every byte that is hashed starts defined.
 void clear_particles(Backend& backend, const ParticleArrays& arrays);

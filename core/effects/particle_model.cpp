@@ -8,9 +8,8 @@ namespace {
 
 double cell_edge_mm(const ParticleParams& p) { return p.cell_mm > 0.0 ? p.cell_mm : p.diameter_mm; }
 
-int cells_along(double panel_mm, double cell_mm) {
-  return std::max(1, int(std::ceil(panel_mm / cell_mm)));
-}
+// As a double: a grid too large to count in integers is measured before it is refused.
+double cells_along(double panel_mm, double cell_mm) { return std::max(1.0, std::ceil(panel_mm / cell_mm)); }
 
 std::uint32_t steps_in(double seconds, double steps_per_s) {
   return std::uint32_t(std::max(1.0, std::round(seconds * steps_per_s)));
@@ -28,6 +27,10 @@ double particle_steps_per_s(const Scene& scene) {
   return scene.frame_rate_hz * double(scene.particles->substeps);
 }
 
+double particle_lifetime_steps(const ParticleParams& p, double frame_rate_hz) {
+  return p.lifetime_s * frame_rate_hz * double(p.substeps);
+}
+
 double stable_time_step_s(double k, double c, double drag, int contacts) {
   // The positive root of z·k·dt² + (2z·c − 2γ)·dt − 4 = 0. Below it (2z·c − 2γ)·dt < 4, which is
   // the second condition, z·c·dt < 2 + γ·dt: the first implies it.
@@ -41,8 +44,18 @@ double particle_step_limit_s(const ParticleParams& p) {
 }
 
 double particle_grid_cells(const ParticleParams& p, double width_mm, double height_mm) {
-  const double cell = cell_edge_mm(p);
-  return std::max(1.0, std::ceil(width_mm / cell)) * std::max(1.0, std::ceil(height_mm / cell));
+  return cells_along(width_mm, cell_edge_mm(p)) * cells_along(height_mm, cell_edge_mm(p));
+}
+
+ParticleLifetime particle_lifetime(const Scene& scene) {
+  const ParticleParams& p = *scene.particles;
+  const double steps_per_s = particle_steps_per_s(scene);
+  const std::uint32_t steps = steps_in(p.lifetime_s, steps_per_s);
+  return {steps, std::min(steps, steps_in(p.fade_s, steps_per_s))};
+}
+
+std::size_t particle_cell_count(const Scene& scene) {
+  return std::size_t(particle_grid_cells(*scene.particles, scene.domain.width_mm, scene.domain.height_mm));
 }
 
 ParticleModel make_particle_model(const Scene& scene) {
@@ -68,12 +81,11 @@ ParticleModel make_particle_model(const Scene& scene) {
   m.min_y = float(r);
   m.max_y = float(scene.domain.height_mm - r);
   m.cell_mm = float(cell);
-  m.cells_x = cells_along(scene.domain.width_mm, cell);
-  m.cells_y = cells_along(scene.domain.height_mm, cell);
+  m.cells_x = int(cells_along(scene.domain.width_mm, cell));
+  m.cells_y = int(cells_along(scene.domain.height_mm, cell));
   m.max_per_cell = p.max_per_cell;
   m.key_bits = bits_for(std::uint32_t(m.cells_x) * std::uint32_t(m.cells_y));
-  m.lifetime_steps = steps_in(p.lifetime_s, steps_per_s);
-  m.fade_steps = std::min(m.lifetime_steps, steps_in(p.fade_s, steps_per_s));
+  m.lifetime = particle_lifetime(scene);
   m.jitter_mm = float(p.jitter_mm);
   m.velocity_x = float(p.velocity_x_mm_s);
   m.velocity_y = float(p.velocity_y_mm_s);

@@ -11,6 +11,8 @@ namespace bleedsim {
 
 // Physics steps per second: frame rate × sub-steps.
 double particle_steps_per_s(const Scene& scene);
+// Steps in a particle's lifetime, before rounding (a scene's check refuses more than can be counted).
+double particle_lifetime_steps(const ParticleParams& params, double frame_rate_hz);
 
 // The largest stable sub-step when particles touch up to `contacts` others. In a hexagonal pile
 // (six contacts) the fastest mode has ω² = 6k and damping 6c; with z contacts, ω² ≈ zk. Semi-
@@ -29,7 +31,11 @@ double particle_step_limit_s(const ParticleParams& params);
 // (particle_table()) refuses the grids too large to key before anything counts them in integers.
 double particle_grid_cells(const ParticleParams& params, double width_mm, double height_mm);
 
-// Requires scene.particles.
+// The rest require scene.particles.
 ParticleModel make_particle_model(const Scene& scene);
+// Parts of the model, for what needs no more of it: the lifetime (the splat's), and the number of
+// cells of the collision grid (cell_count() of the model; the memory estimate's).
+ParticleLifetime particle_lifetime(const Scene& scene);
+std::size_t particle_cell_count(const Scene& scene);
 
 }  // namespace bleedsim

@@ -66,7 +66,7 @@ ParamProblem particle_fits_the_panel(const P& p, const Scene& scene) {
 }
 
 ParamProblem lifetime_countable(const P& p, const Scene& scene) {
-  const double steps = p.lifetime_s * scene.frame_rate_hz * p.substeps;
+  const double steps = particle_lifetime_steps(p, scene.frame_rate_hz);
   if (steps <= 2.0e9) return {};
   return {"lifetime_s", "a lifetime of " + number(p.lifetime_s) + " s is " + number(steps) +
                             " steps; at most 2e9 can be counted"};

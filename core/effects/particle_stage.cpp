@@ -14,22 +14,6 @@ constexpr std::size_t kInitialEmitters = 16;
 // CUB's radix sort needs a second copy of keys and values and a small histogram; this bounds it.
 std::size_t sort_scratch_bound(std::size_t capacity) { return 2 * capacity * 2 * sizeof(std::uint32_t) + (1u << 20); }
 
-// A non-image field: one row of `elements` (ring-buffer slots, or counters).
-Field element_field(const char* name, ElementType type, int channels, int elements, bool on_request,
-                    const char* unit, const char* description) {
-  Field field;
-  field.name = name;
-  field.type = type;
-  field.channels = channels;
-  field.width = elements;
-  field.height = 1;
-  field.unit = unit;
-  field.description = description;
-  field.image = false;
-  field.on_request = on_request;
-  return field;
-}
-
 // Particles a cut has emitted by time t: its rate over the part of [start, start + bleed] before t.
 std::uint64_t emitted_by(const Cut& cut, double t) {
   const double bleeding = std::clamp(t - cut.start_s, 0.0, cut.bleed_s);
@@ -38,32 +22,25 @@ std::uint64_t emitted_by(const Cut& cut, double t) {
 
 }  // namespace
 
-ParticleStage::ParticleStage(const Scene& scene, State& state, Backend& backend)
-    : Stage("particles"),
-      accounting_(std::uint64_t(scene.particles->capacity), make_particle_model(scene).lifetime_steps) {
+ParticleStage::ParticleStage(const StageKind& kind, const Scene& scene, State& state, Backend& backend)
+    : Stage(kind), accounting_(std::uint64_t(scene.particles->capacity), particle_lifetime(scene).steps) {
   const int capacity = scene.particles->capacity;
-  const ParticleModel model = make_particle_model(scene);
+  args_.model = make_particle_model(scene);
+  const ParticleModel& model = args_.model;
   ParticleArrays& a = args_.arrays;
   a.capacity = capacity;
-  Field& position = add_field(state, backend, element_field("particles/position", ElementType::f32, 2, capacity, true,
-                                                            "mm", "centre of each ring-buffer slot's particle"));
-  Field& velocity = add_field(state, backend, element_field("particles/velocity", ElementType::f32, 2, capacity, true,
-                                                            "mm/s", "velocity of each slot's particle"));
-  Field& age = add_field(state, backend, element_field("particles/age", ElementType::u32, 1, capacity, true, "steps",
-                                                       "steps each slot's particle has lived; a slot holds "
-                                                       "a live particle while its age is below the lifetime"));
-  counts_ = &add_field(state, backend,
-                       element_field("particles/accounting", ElementType::u64, 1, 4, false, "particles",
-                                      "emitted, alive, expired, overwritten: emitted = alive + expired + "
-                                      "overwritten"));
+  Field& position = add_field(scene, state, backend, "particles/position", capacity);
+  Field& velocity = add_field(scene, state, backend, "particles/velocity", capacity);
+  Field& age = add_field(scene, state, backend, "particles/age", capacity);
+  counts_ = &add_field(scene, state, backend, "particles/accounting",
+                       int(sizeof(ParticleCounts) / sizeof(std::uint64_t)));
   a.position = position.data.as<float>();
   a.velocity = velocity.data.as<float>();
   a.age = age.data.as<std::uint32_t>();
-  args_.model = model;
 
   const std::size_t sort_bytes = backend.particle_sort_scratch_bytes(capacity, model.key_bits);
-  scratch_ = allocate(backend, particle_scratch_bytes(model, capacity, sort_bytes));
-  point_particle_scratch(a, model, scratch_.data(), sort_bytes);
+  scratch_ = allocate(backend, particle_scratch_bytes(cell_count(model), capacity, sort_bytes));
+  point_particle_scratch(a, cell_count(model), scratch_.data(), sort_bytes);
   emitters_ = allocate(backend, std::max(kInitialEmitters, scene.cuts.size()) * sizeof(Emitter));
 
   clear_particles(backend, a);
@@ -73,10 +50,9 @@ ParticleStage::ParticleStage(const Scene& scene, State& state, Backend& backend)
 
 std::size_t ParticleStage::bytes_for(const Scene& scene) {
   const std::size_t n = std::size_t(scene.particles->capacity);
-  const ParticleModel model = make_particle_model(scene);
   const std::size_t fields = n * (2 * sizeof(float) + 2 * sizeof(float) + sizeof(std::uint32_t)) +
                              sizeof(ParticleCounts);
-  return fields + particle_scratch_bytes(model, scene.particles->capacity, sort_scratch_bound(n)) +
+  return fields + particle_scratch_bytes(particle_cell_count(scene), int(n), sort_scratch_bound(n)) +
          std::max(kInitialEmitters, scene.cuts.size()) * sizeof(Emitter);
 }
 
@@ -118,7 +94,7 @@ void ParticleStage::emit(const Scene& scene, const State& state, Backend& backen
   args_.emitter_count = int(new_.size());
   args_.new_count = int(first_new);
   args_.step = step;
-  backend.particles(ParticlePhase::emit, args_);
+  launch(backend, ParticlePhase::emit, args_);
 }
 
 void ParticleStage::track_live_particles() {
@@ -132,9 +108,9 @@ void ParticleStage::run(const Scene& scene, State& state, Backend& backend) {
     const std::uint64_t step = std::uint64_t(state.frames_done) * substeps + s;
     emit(scene, state, backend, step);
     track_live_particles();
-    backend.particles(ParticlePhase::bin, args_);
-    backend.particles(ParticlePhase::collide, args_);
-    backend.particles(ParticlePhase::integrate, args_);
+    launch(backend, ParticlePhase::bin, args_);
+    launch(backend, ParticlePhase::collide, args_);
+    launch(backend, ParticlePhase::integrate, args_);
     accounting_.end_step(step);
   }
   const ParticleCounts counts = accounting_.counts();

@@ -8,12 +8,13 @@
 
 namespace bleedsim {
 
+// (cuts, particles/position, velocity, age) => particles/position, velocity, age, accounting
 // Each frame: `substeps` physics steps (emit, bin, collide, integrate), then the accounting
 // recorded. The ring buffer's state is in fields, so it is hashed, compared and written like any
 // other output.
 class ParticleStage final : public Stage {
  public:
-  ParticleStage(const Scene& scene, State& state, Backend& backend);
+  ParticleStage(const StageKind& kind, const Scene& scene, State& state, Backend& backend);
   // An upper bound: the CUDA sort's scratch depends on the device.
   static std::size_t bytes_for(const Scene& scene);
   void run(const Scene& scene, State& state, Backend& backend) override;

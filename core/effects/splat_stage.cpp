@@ -1,20 +1,14 @@
 #include "core/effects/splat_stage.h"
 
 #include <cmath>
-#include <stdexcept>
 
 #include "core/effects/particle_model.h"
+#include "core/physics/splat.h"
 
 namespace bleedsim {
 namespace {
 
 std::size_t pixels(const Scene& scene) { return std::size_t(scene.domain.pixel_count()); }
-
-const Field& particle_field(const State& state, const char* name) {
-  const Field* field = state.find(name);
-  if (!field) throw std::logic_error(std::string("the splat needs the particle stage's ") + name);
-  return *field;
-}
 
 }  // namespace
 
@@ -29,15 +23,12 @@ SplatModel make_splat_model(const ParticleParams& p) {
   return s;
 }
 
-SplatStage::SplatStage(const Scene& scene, State& state, Backend& backend)
-    : Stage("splat"), units_(allocate(backend, pixels(scene) * sizeof(std::uint64_t))) {
-  const Field& position = particle_field(state, "particles/position");
-  const Field& age = particle_field(state, "particles/age");
-  Field& thickness = add_field(state, backend,
-                               image_field(scene, "splat/thickness", ElementType::f32, 1, "mm",
-                                           "thickness of the film of blood the particles make: each one's "
-                                           "volume spread over its splat radius"));
-  args_.particles = make_particle_model(scene);
+SplatStage::SplatStage(const StageKind& kind, const Scene& scene, State& state, Backend& backend)
+    : Stage(kind), units_(allocate(backend, pixels(scene) * sizeof(std::uint64_t))) {
+  const Field& position = input(scene, state, "particles/position");
+  const Field& age = input(scene, state, "particles/age");
+  Field& thickness = add_field(scene, state, backend, "splat/thickness");
+  args_.lifetime = particle_lifetime(scene);
   args_.splat = make_splat_model(*scene.particles);
   args_.position = position.data.as<const float>();
   args_.age = age.data.as<const std::uint32_t>();
@@ -51,6 +42,6 @@ std::size_t SplatStage::bytes_for(const Scene& scene) {
   return pixels(scene) * (sizeof(std::uint64_t) + sizeof(float));
 }
 
-void SplatStage::run(const Scene&, State&, Backend& backend) { backend.splat(args_); }
+void SplatStage::run(const Scene&, State&, Backend& backend) { launch(backend, args_); }
 
 }  // namespace bleedsim

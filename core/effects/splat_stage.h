@@ -6,11 +6,11 @@
 
 namespace bleedsim {
 
-// Each frame, in scenes with particles: the live particles splatted into a film of blood
-// (splat/thickness, mm), read from the particle stage's fields.
+// (particles/position, particles/age) => splat/thickness
+// Each frame, in scenes with particles: the live particles splatted into a film of blood, in mm.
 class SplatStage final : public Stage {
  public:
-  SplatStage(const Scene& scene, State& state, Backend& backend);
+  SplatStage(const StageKind& kind, const Scene& scene, State& state, Backend& backend);
   static std::size_t bytes_for(const Scene& scene);
   void run(const Scene& scene, State& state, Backend& backend) override;
 

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "core/physics/pixel_kernels.h"
+
 namespace bleedsim {
 namespace {
 
@@ -15,12 +17,9 @@ std::size_t cut_capacity_for(std::size_t cuts) { return std::max(kInitialCutCapa
 
 }  // namespace
 
-SpreadStage::SpreadStage(const Scene& scene, State& state, Backend& backend)
-    : Stage("spread"),
-      stain_(add_field(state, backend,
-                       image_field(scene, "spread/stain", ElementType::f32, 1, "1",
-                                   "radial-spread stain: fraction of the tissue's green and blue taken out "
-                                   "(report 2.2.1)"))),
+SpreadStage::SpreadStage(const StageKind& kind, const Scene& scene, State& state, Backend& backend)
+    : Stage(kind),
+      stain_(add_field(scene, state, backend, "spread/stain")),
       cuts_(allocate(backend, cut_capacity_for(scene.cuts.size()) * sizeof(SpreadCut))) {}
 
 std::size_t SpreadStage::bytes_for(const Scene& scene) {
@@ -40,8 +39,8 @@ void SpreadStage::run(const Scene& scene, State& state, Backend& backend) {
   const std::size_t needed = active_.size() * sizeof(SpreadCut);
   if (needed > cuts_.bytes()) cuts_ = allocate(backend, 2 * needed);
   if (needed > 0) backend.upload(cuts_.data(), active_.data(), needed);
-  backend.spread(SpreadArgs{cuts_.as<const SpreadCut>(), static_cast<int>(active_.size()),
-                            scene.domain.grid(), stain_.data.as<float>()});
+  launch(backend, SpreadPixel{cuts_.as<const SpreadCut>(), static_cast<int>(active_.size()), scene.domain.grid(),
+                              stain_.data.as<float>()});
 }
 
 }  // namespace bleedsim

@@ -3,13 +3,15 @@
 #include <vector>
 
 #include "core/effects/stage.h"
+#include "core/physics/spread.h"
 
 namespace bleedsim {
 
+// (cuts, frame time) => spread/stain
 // Each frame: the cuts' amplitudes at the frame time (host), then the stain field (backend).
 class SpreadStage final : public Stage {
  public:
-  SpreadStage(const Scene& scene, State& state, Backend& backend);
+  SpreadStage(const StageKind& kind, const Scene& scene, State& state, Backend& backend);
   static std::size_t bytes_for(const Scene& scene);
   void run(const Scene& scene, State& state, Backend& backend) override;
 

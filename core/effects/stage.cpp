@@ -1,19 +1,9 @@
 #include "core/effects/stage.h"
 
-namespace bleedsim {
+#include <algorithm>
+#include <stdexcept>
 
-Field image_field(const Scene& scene, const char* name, ElementType type, int channels, const char* unit,
-                  const char* description) {
-  Field field;
-  field.name = name;
-  field.type = type;
-  field.channels = channels;
-  field.width = scene.domain.width_px;
-  field.height = scene.domain.height_px;
-  field.unit = unit;
-  field.description = description;
-  return field;
-}
+namespace bleedsim {
 
 Buffer Stage::allocate(Backend& backend, std::size_t bytes) {
   Buffer buffer = backend.allocate(bytes);
@@ -21,10 +11,23 @@ Buffer Stage::allocate(Backend& backend, std::size_t bytes) {
   return buffer;
 }
 
-Field& Stage::add_field(State& state, Backend& backend, Field field) {
+Field& Stage::add_field(const Scene& scene, State& state, Backend& backend, const std::string& name, int elements) {
+  const FieldLayout* layout = kind_.written(name);
+  if (!layout) throw std::logic_error("the " + name_ + " stage adds " + name + ", which its kind does not declare");
+  Field field;
+  static_cast<FieldLayout&>(field) = *layout;
+  field.width = layout->image ? scene.domain.width_px : elements;
+  field.height = layout->image ? scene.domain.height_px : 1;
   field.data = allocate(backend, field.bytes());
   state.fields.push_back(std::move(field));
   return state.fields.back();
+}
+
+const Field& Stage::input(const Scene& scene, const State& state, const std::string& name) const {
+  const std::vector<std::string> reads = kind_.reads(scene);
+  if (std::find(reads.begin(), reads.end(), name) == reads.end())
+    throw std::logic_error("the " + name_ + " stage reads " + name + ", which its kind does not declare");
+  return state.require(name);
 }
 
 }  // namespace bleedsim

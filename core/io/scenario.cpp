@@ -14,6 +14,7 @@
 #include <utility>
 
 #include "core/effects/pipeline.h"
+#include "core/effects/stage_kinds.h"
 #include "core/io/tissue_png.h"
 #include "core/io/trace_csv.h"
 #include "core/runtime/memory.h"
@@ -41,21 +42,6 @@ const ParamTable<TissueFile>& tissue_table() {
   return table;
 }
 
-// Each effect's fields, as [output].fields may name them.
-struct KnownField {
-  const char* name;
-  const char* effect;  // the table that must be present for the field to exist
-};
-const KnownField kFields[] = {{"spread/stain", "spread"},          {"splat/thickness", "particles"},
-                              {"blur/thickness", "blur"},
-                              {"particles/accounting", "particles"}, {"particles/position", "particles"},
-                              {"particles/velocity", "particles"},   {"particles/age", "particles"}};
-
-bool declares(const Scene& scene, const std::string& table) {
-  return (table == "spread" && scene.spread) || (table == "particles" && scene.particles) ||
-         (table == "blur" && scene.blur);
-}
-
 // The output folder defaults to out/<name>; the fields listed must be ones this scene makes.
 ParamProblem resolve_output(OutputSpec& out, const Written& written, const Scene& scene) {
   if (!written.has("dir")) out.dir = "out/" + scene.name;
@@ -63,14 +49,16 @@ ParamProblem resolve_output(OutputSpec& out, const Written& written, const Scene
   for (std::size_t i = 0; i < out.fields.size(); ++i) {
     const std::string key = "fields[" + std::to_string(i) + "]";
     const std::string& name = out.fields[i];
-    const auto known = std::find_if(std::begin(kFields), std::end(kFields), [&](const KnownField& f) { return name == f.name; });
-    if (known == std::end(kFields)) {
+    const StageKind* writer = name == "frame" ? nullptr : stage_writing(name);
+    if (!writer) {
       std::string all;
-      for (const KnownField& f : kFields) all += std::string(all.empty() ? "" : ", ") + f.name;
-      return {key, "unknown field '" + name + "' (known: " + all + ")"};
+      for (const StageKind& kind : stage_kinds())
+        for (const FieldLayout& field : kind.writes)
+          if (field.name != "frame") all += (all.empty() ? "" : ", ") + field.name;
+      return {key, "unknown field '" + name + "' (known: " + all + "; the frame is always written)"};
     }
-    if (!declares(scene, known->effect))
-      return {key, "'" + name + "' needs the [" + known->effect + "] effect, which this scene does not declare"};
+    if (!writer->wanted(scene))
+      return {key, "'" + name + "' needs the [" + writer->table + "] effect, which this scene does not declare"};
     if (std::find(out.fields.begin(), out.fields.begin() + std::ptrdiff_t(i), name) != out.fields.begin() + std::ptrdiff_t(i))
       return {key, "'" + name + "' is listed twice"};
   }
@@ -253,6 +241,19 @@ class Reader {
   Scenario& s_;
 };
 
+// Refused at its header, before its keys are read: a table whose stage reads a field that no stage
+// of this scene writes (a [blur] without [particles]).
+void refuse_unwired_stages(Reader& r, const toml::table& root, Scenario& s) {
+  Scene declared = s.scene;
+  if (root.contains("spread")) declared.spread.emplace();
+  if (root.contains("particles")) declared.particles.emplace();
+  if (root.contains("blur")) declared.blur.emplace();
+  if (const ParamProblem problem = Pipeline::wiring_problem(declared)) {
+    r.table(root, problem.key);
+    throw InputError(s.place_of(problem.key), problem.key, problem.message);
+  }
+}
+
 // An effect's table: read into the scene when the file declares it (even empty), absent otherwise.
 template <class P>
 void read_effect(Reader& r, const toml::table& root, const ParamTable<P>& table, std::optional<P>& effect,
@@ -372,8 +373,7 @@ Scenario parse_scenario(const std::string& text, const std::string& path) {
   const toml::table* scene = r.table(root, "scene");
   if (!scene) throw InputError(SourcePlace{path, 0, 0}, "scene", "missing the [scene] table (required)");
   r.read(scene, scene_table(), s.scene, s.scene, "scene");
-  if (root.contains("blur") && !root.contains("particles"))
-    throw InputError(r.place(root.get("blur")->source()), "blur", "blurs the particles' film: this scene declares no [particles]");
+  refuse_unwired_stages(r, root, s);
   read_effect(r, root, spread_table(), s.scene.spread, s.scene);
   read_effect(r, root, particle_table(), s.scene.particles, s.scene);
   read_effect(r, root, blur_table(), s.scene.blur, s.scene);

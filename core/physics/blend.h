@@ -3,9 +3,11 @@
 // is taken out of the tissue's green and blue, so stained tissue reads red with the stain's soft
 // edge; red and alpha pass through. The particles' film of blood (core/physics/splat.h) then lies over it. Bytes map to [0, 1] as v/255 and back with round-half-up.
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 
 #include "core/physics/hd.h"
+#include "core/physics/pixel_grid.h"
 
 namespace bleedsim {
 
@@ -58,18 +60,23 @@ BLEEDSIM_HD inline void blend_pixel(const std::uint8_t* tissue_rgba, float stain
 // The table transmitted() reads: exp(−k / kTransmissionStepsPerUnit), in double, rounded once.
 void fill_transmission_table(float* table);
 
-// The stage's twins. stain and thickness_mm may be null: a scene without that effect shows none of
-// it. transmission is needed with thickness_mm.
-struct BlendArgs {
+// The stage's work, pixel by pixel (core/physics/pixel_kernels.h runs it). stain and thickness_mm
+// may be null: a scene without that effect shows none of it. transmission is needed with thickness_mm.
+struct BlendPixel {
   const std::uint8_t* tissue_rgba;
   const float* stain;
   const float* thickness_mm;
   const float* transmission;  // kTransmissionEntries, with thickness_mm
-  int width;
-  int height;
+  PixelGrid grid;
   std::uint8_t* frame_rgba;
+
+  BLEEDSIM_HD int width() const { return grid.width; }
+  BLEEDSIM_HD int height() const { return grid.height; }
+  BLEEDSIM_HD void operator()(int i, int j) const {
+    const std::size_t p = std::size_t(j) * grid.width + i;
+    blend_pixel(tissue_rgba + 4 * p, stain ? stain[p] : 0.0f, thickness_mm ? thickness_mm[p] : 0.0f, transmission,
+                frame_rgba + 4 * p);
+  }
 };
-void blend_cpu(const BlendArgs& args, int threads);
-void blend_cuda(const BlendArgs& args);
 
 }  // namespace bleedsim

@@ -13,8 +13,7 @@
 
 namespace bleedsim {
 
-enum class BlurPhase { downsample, horizontal, vertical, upsample };
-
+// The blur's sizes and buffers, which its passes share.
 struct BlurArgs {
   int width;            // the panel, in pixels
   int height;
@@ -68,9 +67,60 @@ BLEEDSIM_HD inline float bilinear_up(const BlurArgs& a, int i, int j) {
   return top + (bottom - top) * fy;
 }
 
-// The stage's twins, one pass at a time: downsample film → low, horizontal low → across,
-// vertical across → low, upsample low → blurred.
-void blur_cpu(BlurPhase phase, const BlurArgs& args, int threads);
-void blur_cuda(BlurPhase phase, const BlurArgs& args);
+// The passes, pixel by pixel (core/physics/pixel_kernels.h runs them). Each writes one grid from
+// another, never the one it reads.
+
+// film → low, on the downsampled grid.
+struct BlurDownsample {
+  BlurArgs a;
+
+  BLEEDSIM_HD int width() const { return a.low_width; }
+  BLEEDSIM_HD int height() const { return a.low_height; }
+  BLEEDSIM_HD void operator()(int i, int j) const { a.low[std::size_t(j) * a.low_width + i] = block_mean(a, i, j); }
+};
+
+// in → out along rows (horizontal) or columns, on the downsampled grid.
+struct BlurGaussian {
+  BlurArgs a;
+  const float* in;
+  float* out;
+  bool horizontal;
+
+  BLEEDSIM_HD int width() const { return a.low_width; }
+  BLEEDSIM_HD int height() const { return a.low_height; }
+  BLEEDSIM_HD void operator()(int i, int j) const {
+    out[std::size_t(j) * a.low_width + i] = gaussian_tap_sum(a, in, i, j, horizontal);
+  }
+};
+
+// low → blurred, on the panel's grid.
+struct BlurUpsample {
+  BlurArgs a;
+
+  BLEEDSIM_HD int width() const { return a.width; }
+  BLEEDSIM_HD int height() const { return a.height; }
+  BLEEDSIM_HD void operator()(int i, int j) const { a.blurred[std::size_t(j) * a.width + i] = bilinear_up(a, i, j); }
+};
+
+// The four passes in the order they run: downsample film → low, horizontal low → across, vertical
+// across → low, upsample low → blurred.
+struct BlurPasses {
+  BlurDownsample downsample;
+  BlurGaussian horizontal;
+  BlurGaussian vertical;
+  BlurUpsample upsample;
+
+  template <class Fn>
+  void each(const Fn& fn) const {
+    fn(downsample);
+    fn(horizontal);
+    fn(vertical);
+    fn(upsample);
+  }
+};
+
+inline BlurPasses blur_passes(const BlurArgs& a) {
+  return {{a}, {a, a.low, a.across, true}, {a, a.across, a.low, false}, {a}};
+}
 
 }  // namespace bleedsim

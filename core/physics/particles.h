@@ -22,6 +22,13 @@
 
 namespace bleedsim {
 
+// How long a particle lives, and over how many of its last steps it fades (made on the host by
+// particle_lifetime(), core/effects/particle_model.h). The splat needs only this of the model.
+struct ParticleLifetime {
+  std::uint32_t steps;
+  std::uint32_t fade_steps;
+};
+
 // The model's constants for one run, as the floats both backends compute with (made once on
 // the host by make_particle_model(), core/effects/particle_model.h).
 struct ParticleModel {
@@ -43,8 +50,7 @@ struct ParticleModel {
   int cells_y;
   int max_per_cell;        // neighbours visited per cell, at most (bounds the work in a crowd)
   int key_bits;            // bits of a cell key; the sentinel `cells_x·cells_y` marks no particle
-  std::uint32_t lifetime_steps;
-  std::uint32_t fade_steps;
+  ParticleLifetime lifetime;
   float jitter_mm;         // emission: position jitter, ± this in x and y
   float velocity_x;        // emission: initial velocity, mm/s ...
   float velocity_y;
@@ -100,9 +106,8 @@ struct ParticleArgs {
   int live_count;
 };
 
-BLEEDSIM_HD inline bool is_alive(const ParticleModel& m, std::uint32_t age) {
-  return age < m.lifetime_steps;
-}
+BLEEDSIM_HD inline bool is_alive(const ParticleLifetime& l, std::uint32_t age) { return age < l.steps; }
+BLEEDSIM_HD inline bool is_alive(const ParticleModel& m, std::uint32_t age) { return is_alive(m.lifetime, age); }
 
 // The t-th live slot, t < live_count.
 BLEEDSIM_HD inline int live_slot(const ParticleArgs& a, int t) {
@@ -144,9 +149,12 @@ BLEEDSIM_HD inline void emit_particle(const ParticleArgs& a, int t) {
 
 // ---- bin ---------------------------------------------------------------------------------------
 
-BLEEDSIM_HD inline std::uint32_t sentinel_key(const ParticleModel& m) {
+BLEEDSIM_HD inline std::uint32_t cell_count(const ParticleModel& m) {
   return std::uint32_t(m.cells_x) * std::uint32_t(m.cells_y);
 }
+
+// One past the last cell.
+BLEEDSIM_HD inline std::uint32_t sentinel_key(const ParticleModel& m) { return cell_count(m); }
 
 // Clamped before the conversion: float→int of out-of-range values differs between CPU and GPU.
 BLEEDSIM_HD inline int cell_coordinate(float v_mm, float cell_mm, int cells) {
@@ -281,13 +289,13 @@ BLEEDSIM_HD inline void integrate_particle(const ParticleArrays& p, const Partic
 
 // How much of a particle is still there over its last fade_steps: from 1 down to 1/fade_steps,
 // never 0 while it lives, so it fades out instead of popping.
-BLEEDSIM_HD inline float fade_alpha(const ParticleModel& m, std::uint32_t age) {
-  return fminf(1.0f, float(m.lifetime_steps - age) / float(m.fade_steps));
+BLEEDSIM_HD inline float fade_alpha(const ParticleLifetime& l, std::uint32_t age) {
+  return fminf(1.0f, float(l.steps - age) / float(l.fade_steps));
 }
 
 // The twins: one phase of a step over host memory (CPU reference) or device memory (CUDA).
-void particles_cpu(ParticlePhase phase, const ParticleArgs& args, int threads);
-void particles_cuda(ParticlePhase phase, const ParticleArgs& args);
+void cpu_twin(ParticlePhase phase, const ParticleArgs& args, int threads);
+void cuda_twin(ParticlePhase phase, const ParticleArgs& args);
 // Bytes of temporary storage the CUDA sort needs for `capacity` keys of `key_bits` bits.
 std::size_t particle_sort_scratch_cuda(int capacity, int key_bits);
 

@@ -32,7 +32,7 @@ struct SplatModel {
 };
 
 struct SplatArgs {
-  ParticleModel particles;  // lifetime and fade
+  ParticleLifetime lifetime;
   SplatModel splat;
   const float* position;    // the ring buffer's slots
   const std::uint32_t* age;
@@ -53,7 +53,7 @@ BLEEDSIM_HD inline float splat_weight(const SplatModel& s, float d2) {
 template <class Deposit>
 BLEEDSIM_HD inline void splat_particle(const SplatArgs& a, int slot, Deposit deposit) {
   const std::uint32_t age = a.age[slot];
-  if (!is_alive(a.particles, age)) return;
+  if (!is_alive(a.lifetime, age)) return;
   const PixelGrid& g = a.grid;
   const float x = a.position[2 * slot], y = a.position[2 * slot + 1];
   const float w = float(g.width), h = float(g.height), r = a.splat.radius_mm;
@@ -62,7 +62,7 @@ BLEEDSIM_HD inline void splat_particle(const SplatArgs& a, int slot, Deposit dep
   const int i1 = int(clamp_float(floorf((x + r) / g.mm_per_px_x - 0.5f), -1.0f, w - 1.0f));
   const int j0 = int(clamp_float(ceilf((y - r) / g.mm_per_px_y - 0.5f), 0.0f, h));
   const int j1 = int(clamp_float(floorf((y + r) / g.mm_per_px_y - 0.5f), -1.0f, h - 1.0f));
-  const float centre_units = a.splat.particle_volume_mm3 * fade_alpha(a.particles, age) * a.splat.units_per_volume;
+  const float centre_units = a.splat.particle_volume_mm3 * fade_alpha(a.lifetime, age) * a.splat.units_per_volume;
   for (int j = j0; j <= j1; ++j) {
     const float dy = pixel_centre_y_mm(g, j) - y;
     for (int i = i0; i <= i1; ++i) {
@@ -76,8 +76,25 @@ BLEEDSIM_HD inline void splat_particle(const SplatArgs& a, int slot, Deposit dep
 
 BLEEDSIM_HD inline float thickness_from_units(std::uint64_t units) { return float(units) * kSplatUnitMm; }
 
-// The stage's twins: clear the sum, deposit every live particle, convert to millimetres.
-void splat_cpu(const SplatArgs& args, int threads);
-void splat_cuda(const SplatArgs& args);
+// The sum converted to millimetres, pixel by pixel (core/physics/pixel_kernels.h runs it).
+struct SplatThickness {
+  PixelGrid grid;
+  const std::uint64_t* units;
+  float* thickness_mm;
+
+  BLEEDSIM_HD int width() const { return grid.width; }
+  BLEEDSIM_HD int height() const { return grid.height; }
+  BLEEDSIM_HD void operator()(int i, int j) const {
+    const std::size_t p = std::size_t(j) * grid.width + i;
+    thickness_mm[p] = thickness_from_units(units[p]);
+  }
+};
+
+inline SplatThickness splat_thickness(const SplatArgs& a) { return {a.grid, a.units, a.thickness_mm}; }
+
+// The stage's twins: clear the sum, deposit every live particle (a loop on the CPU, integer atomics
+// on the GPU), then SplatThickness's twin.
+void cpu_twin(const SplatArgs& args, int threads);
+void cuda_twin(const SplatArgs& args);
 
 }  // namespace bleedsim

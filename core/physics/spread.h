@@ -10,6 +10,7 @@
 // product of what each lets through, stain = 1 − Π(1 − sᵢ), taken in cut order.
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 
 #include "core/physics/hd.h"
 #include "core/physics/pixel_grid.h"
@@ -61,14 +62,18 @@ inline float cut_amplitude(double start_s, double growth_per_s, double t_s) {
   return static_cast<float>(std::clamp((t_s - start_s) * growth_per_s, 0.0, 1.0));
 }
 
-// The stage's twins: the CPU reference over host memory, the CUDA kernel over device memory.
-struct SpreadArgs {
+// The stage's work, pixel by pixel: the stain of one frame's cuts (core/physics/pixel_kernels.h runs it).
+struct SpreadPixel {
   const SpreadCut* cuts;
   int cut_count;
   PixelGrid grid;
   float* stain;  // grid.width × grid.height, row-major
+
+  BLEEDSIM_HD int width() const { return grid.width; }
+  BLEEDSIM_HD int height() const { return grid.height; }
+  BLEEDSIM_HD void operator()(int i, int j) const {
+    stain[std::size_t(j) * grid.width + i] = spread_stain(cuts, cut_count, grid, i, j);
+  }
 };
-void spread_cpu(const SpreadArgs& args, int threads);
-void spread_cuda(const SpreadArgs& args);
 
 }  // namespace bleedsim

@@ -19,31 +19,6 @@ Buffer Backend::allocate(std::size_t bytes) {
   });
 }
 
-void Backend::spread(const SpreadArgs& args) {
-  ++launches_["spread"];
-  run_spread(args);
-}
-
-void Backend::blend(const BlendArgs& args) {
-  ++launches_["blend"];
-  run_blend(args);
-}
-
-void Backend::particles(ParticlePhase phase, const ParticleArgs& args) {
-  ++launches_["particles"];
-  run_particles(phase, args);
-}
-
-void Backend::splat(const SplatArgs& args) {
-  ++launches_["splat"];
-  run_splat(args);
-}
-
-void Backend::blur(BlurPhase phase, const BlurArgs& args) {
-  ++launches_["blur"];
-  run_blur(phase, args);
-}
-
 std::uint64_t Backend::launches(const std::string& stage) const {
   const auto it = launches_.find(stage);
   return it == launches_.end() ? 0 : it->second;

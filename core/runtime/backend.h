@@ -1,6 +1,7 @@
 #pragma once
 // A backend is where the physics runs: the CPU reference (always) or CUDA (when built and a device
-// is present). It owns memory and runs stage twins; it holds no formulas, which live in core/.
+// is present). It owns memory and runs stage twins; it holds no formulas, which live in core/, and
+// knows no effect: a twin pair is found by its argument types.
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -8,12 +9,12 @@
 #include <memory>
 #include <string>
 
-#include "core/physics/blend.h"
-#include "core/physics/blur.h"
 #include "core/runtime/buffer.h"
-#include "core/physics/particles.h"
-#include "core/physics/splat.h"
-#include "core/physics/spread.h"
+
+// Backend::run below must see whether the CUDA twins exist: bleedsim::core's CMake target says.
+#ifndef BLEEDSIM_HAVE_CUDA
+#error "BLEEDSIM_HAVE_CUDA is not defined: link the bleedsim::core target, which defines it"
+#endif
 
 namespace bleedsim {
 
@@ -37,12 +38,20 @@ class Backend {
   // around the launches on the device. For benchmarks.
   virtual double time_ms(const std::function<void()>& work) = 0;
 
-  // Stage twins (the work, counted per stage so a pipeline can prove what it ran).
-  void spread(const SpreadArgs& args);
-  void blend(const BlendArgs& args);
-  void particles(ParticlePhase phase, const ParticleArgs& args);  // counted as "particles"
-  void splat(const SplatArgs& args);
-  void blur(BlurPhase phase, const BlurArgs& args);  // counted as "blur"
+  // Runs one piece of a stage's work, counted under `stage` so a pipeline can prove what it ran:
+  // cpu_twin(a..., threads) on the CPU, cuda_twin(a...) on CUDA, the twin pair that the
+  // arguments' physics header declares (core/physics/; per-pixel work: pixel_kernels.h).
+  template <class... A>
+  void run(const std::string& stage, const A&... a) {
+    ++launches_[stage];
+#if BLEEDSIM_HAVE_CUDA
+    if (kind() == BackendKind::cuda) {
+      cuda_twin(a...);
+      return;
+    }
+#endif
+    cpu_twin(a..., cpu_threads_);
+  }
   // Temporary storage the particle sort needs here (none on the CPU, CUB's on the GPU).
   virtual std::size_t particle_sort_scratch_bytes(int capacity, int key_bits) const = 0;
 
@@ -50,13 +59,12 @@ class Backend {
   std::size_t bytes_in_use() const { return *bytes_in_use_; }
 
  protected:
+  // `cpu_threads`: the threads the CPU twins run on (the CPU backend's; unused on CUDA).
+  explicit Backend(int cpu_threads = 1) : cpu_threads_(cpu_threads) {}
   virtual void* allocate_raw(std::size_t bytes) = 0;
   virtual void release_raw(void* data) = 0;
-  virtual void run_spread(const SpreadArgs& args) = 0;
-  virtual void run_blend(const BlendArgs& args) = 0;
-  virtual void run_particles(ParticlePhase phase, const ParticleArgs& args) = 0;
-  virtual void run_splat(const SplatArgs& args) = 0;
-  virtual void run_blur(BlurPhase phase, const BlurArgs& args) = 0;
+
+  const int cpu_threads_;
 
  private:
   std::map<std::string, std::uint64_t> launches_;

@@ -1,5 +1,7 @@
 #include "core/runtime/state.h"
 
+#include <stdexcept>
+
 namespace bleedsim {
 
 std::size_t element_size(ElementType type) {
@@ -18,6 +20,12 @@ Field* State::find(const std::string& name) {
 
 const Field* State::find(const std::string& name) const {
   return const_cast<State*>(this)->find(name);
+}
+
+const Field& State::require(const std::string& name) const {
+  const Field* field = find(name);
+  if (!field) throw std::logic_error("no stage has added the field " + name);
+  return *field;
 }
 
 }  // namespace bleedsim

@@ -46,6 +46,9 @@ struct State {
 
   Field* find(const std::string& name);
   const Field* find(const std::string& name) const;
+  // A field a stage reads: throws std::logic_error when none was added (the pipeline builds every
+  // writer before its readers, so a missing one is a bug, not a scene's mistake).
+  const Field& require(const std::string& name) const;
 };
 
 }  // namespace bleedsim

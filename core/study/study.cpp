@@ -6,6 +6,7 @@
 #include <map>
 #include <stdexcept>
 
+#include "core/effects/blend_stage.h"
 #include "core/io/scenario.h"
 #include "core/runtime/input_error.h"
 #include "core/runtime/message_text.h"
@@ -38,11 +39,6 @@ void check_values(const Knob& knob, const std::vector<double>& values) {
     if (const ParamProblem problem = range_problem(knob.param, param.type, param.range, v))
       throw InputError(no_place(), key, "values of " + problem.key + " " + problem.message);
   }
-}
-
-// The fields the metrics read, where this scene has them.
-const char* film_field(const Scene& s) {
-  return s.blur ? "blur/thickness" : s.particles ? "splat/thickness" : nullptr;
 }
 
 template <class T>
@@ -149,13 +145,15 @@ StudyRun Study::run_one(const StudySetting& setting, BackendKind backend, const 
     return run;
   }
   const Scene& s = sim->scene();
-  const char* film = film_field(s);
+  // The metrics read what the blend lays over the tissue.
+  const char* film = blend_film_field(s);
+  const char* stain = blend_stain_field(s);
   for (long k = 0; k < frames_per_run(); ++k) {
     FrameFields fields{s.domain.width_px, s.domain.height_px, s.domain.width_mm, s.domain.height_mm, {}, {}, {}};
     const Clock::time_point start = Clock::now();
     sim->step();
     if (film) fields.film_mm = copy_as<float>(*sim, film);
-    if (s.spread) fields.stain = copy_as<float>(*sim, "spread/stain");
+    if (stain) fields.stain = copy_as<float>(*sim, stain);
     fields.rgba = sim->copy_field("frame");
     run.frame_seconds.push_back(std::chrono::duration<double>(Clock::now() - start).count());
     GridFrame frame = on_grid(fields, grid_w_, grid_h_);

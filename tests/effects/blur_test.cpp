@@ -6,7 +6,7 @@
 #include <numeric>
 #include <vector>
 
-#include "core/physics/blur.h"
+#include "core/physics/pixel_kernels.h"
 #include "core/effects/blur_stage.h"
 
 namespace bleedsim {
@@ -32,8 +32,7 @@ struct Blurred {
     args.low = low.data();
     args.across = across.data();
     args.blurred = out.data();
-    for (BlurPhase phase : {BlurPhase::downsample, BlurPhase::horizontal, BlurPhase::vertical, BlurPhase::upsample})
-      blur_cpu(phase, args, 2);
+    blur_passes(args).each([](const auto& pass) { cpu_twin(pass, 2); });
   }
 };
 

@@ -81,6 +81,24 @@ TEST(ParticleAccounting, ExpiryAndOverwritingTogetherMatchTheRingReplayed) {
   expect_accounting_matches_replay(16, 6, counts);
 }
 
+// ---- the model's parts -------------------------------------------------------------------------
+
+// What the splat and the memory estimate take instead of the whole model is the model's own.
+TEST(ParticleModel, ItsPartsAreTheWholeModels) {
+  Scene scene;
+  scene.domain = Domain{200, 150, 47.3, 31.9};  // not whole cells
+  scene.particles = ParticleParams{};
+  scene.particles->cell_mm = 0.45;
+  scene.particles->lifetime_s = 2.0;
+  scene.particles->fade_s = 0.3;
+  const ParticleModel m = make_particle_model(scene);
+  EXPECT_EQ(particle_lifetime(scene).steps, m.lifetime.steps);
+  EXPECT_EQ(particle_lifetime(scene).fade_steps, m.lifetime.fade_steps);
+  EXPECT_EQ(m.lifetime.steps, 2400u);  // 2 s at 30 Hz × 40 sub-steps
+  EXPECT_EQ(particle_cell_count(scene), std::size_t(cell_count(m)));
+  EXPECT_EQ(cell_count(m), 106u * 71u);  // ⌈47.3 / 0.45⌉ × ⌈31.9 / 0.45⌉
+}
+
 // ---- random numbers ----------------------------------------------------------------------------
 
 TEST(CounterHash, DependsOnEveryCounterAndIsEvenlySpread) {
@@ -197,8 +215,8 @@ double largest_late_speed(double dt_fraction, int steps) {
   a.position = position.as<float>();
   a.velocity = velocity.as<float>();
   a.age = age.as<std::uint32_t>();
-  Buffer scratch = cpu->allocate(particle_scratch_bytes(m, n, 0));
-  point_particle_scratch(a, m, scratch.data(), 0);
+  Buffer scratch = cpu->allocate(particle_scratch_bytes(cell_count(m), n, 0));
+  point_particle_scratch(a, cell_count(m), scratch.data(), 0);
   clear_particles(*cpu, a);
   int slot = 0;
   for (int row = 0; row < rows; ++row)
@@ -215,7 +233,7 @@ double largest_late_speed(double dt_fraction, int steps) {
   double late = 0.0;
   for (int s = 0; s < steps; ++s) {
     for (ParticlePhase phase : {ParticlePhase::bin, ParticlePhase::collide, ParticlePhase::integrate})
-      particles_cpu(phase, args, 1);
+      cpu_twin(phase, args, 1);
     if (s < steps - steps / 10) continue;
     for (int i = 0; i < n; ++i) {
       const double speed = std::hypot(a.velocity[2 * i], a.velocity[2 * i + 1]);

@@ -2,6 +2,10 @@
 // allocates nothing and the backend never runs it.
 #include <gtest/gtest.h>
 
+#include <map>
+#include <stdexcept>
+
+#include "core/effects/blend_stage.h"
 #include "core/effects/pipeline.h"
 #include "core/runtime/simulation.h"
 #include "tests/runtime/scenes_in_code.h"
@@ -10,6 +14,16 @@ namespace bleedsim {
 namespace {
 
 const BackendChoice kCpu{BackendChoice::Want::cpu, 2};
+
+// The in-code scene with particles from a cut at (8, 4) mm, and with [blur] when asked.
+Scene particle_scene(bool blurred) {
+  Scene scene = test::scene_in_code(false);
+  scene.particles = ParticleParams{};
+  scene.particles->capacity = 256;
+  scene.cuts = {scene.cut_at(8.0, 4.0, 0.0)};
+  if (blurred) scene.blur = BlurParams{};
+  return scene;
+}
 
 TEST(Pipeline, ASceneWithoutTheSpreadHasNoneOfItsCost) {
   Simulation sim(test::scene_in_code(false), kCpu);
@@ -51,12 +65,7 @@ TEST(Pipeline, EstimatesExactlyWhatItAllocates) {
 // The screen-space stages follow the scene: particles bring the splat; only [blur] brings the blur;
 // the blend lays over the tissue whichever film the scene makes.
 TEST(Pipeline, TheFilmsStagesRunOnlyWhenTheSceneCallsForThem) {
-  Scene particles = test::scene_in_code(false);
-  particles.particles = ParticleParams{};
-  particles.particles->capacity = 256;
-  particles.cuts = {particles.cut_at(8.0, 4.0, 0.0)};
-  Scene blurred = particles;
-  blurred.blur = BlurParams{};
+  const Scene particles = particle_scene(false), blurred = particle_scene(true);
 
   Simulation raw(particles, kCpu), soft(blurred, kCpu);
   for (int k = 0; k < 3; ++k) raw.step(), soft.step();
@@ -73,6 +82,69 @@ TEST(Pipeline, TheFilmsStagesRunOnlyWhenTheSceneCallsForThem) {
   Simulation spread(test::scene_in_code(true), kCpu);
   EXPECT_EQ(spread.backend().launches("splat"), 0u);
   EXPECT_EQ(Pipeline::backend_bytes(test::scene_in_code(true)), spread.backend().bytes_in_use());
+}
+
+// Every field has one writer, and the list says which scenario table calls for it.
+TEST(StageKinds, EachFieldHasOneWriterAndTheTableThatCallsForIt) {
+  std::map<std::string, int> writers;
+  for (const StageKind& kind : stage_kinds())
+    for (const FieldLayout& field : kind.writes) ++writers[field.name];
+  for (const auto& [field, count] : writers) EXPECT_EQ(count, 1) << field;
+  ASSERT_NE(stage_writing("blur/thickness"), nullptr);
+  EXPECT_STREQ(stage_writing("blur/thickness")->table, "blur");
+  EXPECT_STREQ(stage_writing("splat/thickness")->name, "splat");
+  EXPECT_STREQ(stage_writing("splat/thickness")->table, "particles");
+  EXPECT_STREQ(stage_writing("frame")->table, "");
+  EXPECT_EQ(stage_writing("glare"), nullptr);
+}
+
+// The run order follows the reads (the film after the particles, the blend after all): it fixes
+// the order of State's fields, and so of every frame's hash.
+TEST(Pipeline, RunsEachStageAfterTheStagesWhoseFieldsItReads) {
+  Scene scene = particle_scene(true);
+  scene.spread = SpreadParams{};
+  EXPECT_EQ(Pipeline::stage_names(scene),
+            (std::vector<std::string>{"spread", "particles", "splat", "blur", "blend"}));
+  const Simulation sim(scene, kCpu);
+  EXPECT_EQ(sim.field_names(),
+            (std::vector<std::string>{"spread/stain", "particles/position", "particles/velocity", "particles/age",
+                                      "particles/accounting", "splat/thickness", "blur/thickness", "frame"}));
+}
+
+// The blend reads the stain and the film the scene makes, and nothing it does not.
+TEST(Pipeline, TheBlendReadsTheFieldsTheSceneMakes) {
+  const Scene bare = test::scene_in_code(false), stained = test::scene_in_code(true);
+  const Scene raw = particle_scene(false), soft = particle_scene(true);
+  EXPECT_EQ(blend_stain_field(bare), nullptr);
+  EXPECT_STREQ(blend_stain_field(stained), "spread/stain");
+  EXPECT_EQ(blend_film_field(stained), nullptr);
+  EXPECT_STREQ(blend_film_field(raw), "splat/thickness");
+  EXPECT_STREQ(blend_film_field(soft), "blur/thickness");
+  EXPECT_EQ(stage_writing("frame")->reads(soft), std::vector<std::string>{"blur/thickness"});
+}
+
+// A stage whose input no stage of the scene writes is refused before anything is allocated, with
+// the stage, the field, its writer and the table that calls for the writer.
+TEST(Pipeline, RefusesAStageWhoseInputNoStageOfTheSceneWrites) {
+  Scene scene = test::scene_in_code(false);
+  scene.blur = BlurParams{};  // and no [particles]: nothing makes the film it blurs
+  std::unique_ptr<Backend> cpu = make_cpu_backend(1);
+  State state;
+  try {
+    Pipeline pipeline(scene, state, *cpu);
+    FAIL() << "built";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "blur: the blur stage reads splat/thickness, which the splat stage writes; a scene calls for "
+                           "that stage with a [particles] table, and this one has none");
+  }
+  EXPECT_EQ(cpu->bytes_in_use(), 0u);
+  EXPECT_TRUE(state.fields.empty());
+  EXPECT_THROW(Pipeline::backend_bytes(scene), std::invalid_argument);
+}
+
+TEST(State, AMissingInputIsABug) {
+  const State state;
+  EXPECT_THROW(state.require("spread/stain"), std::logic_error);
 }
 
 }  // namespace

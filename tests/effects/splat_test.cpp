@@ -27,8 +27,7 @@ struct Film {
       : position(std::move(xy)), age(std::move(ages)) {
     ParticleParams params;
     params.splat_radius_mm = radius_mm;
-    args.particles.lifetime_steps = 1000;
-    args.particles.fade_steps = 100;
+    args.lifetime = {1000, 100};
     args.splat = make_splat_model(params);
     args.position = position.data();
     args.age = age.data();
@@ -38,7 +37,7 @@ struct Film {
     thickness.resize(units.size());
     args.units = units.data();
     args.thickness_mm = thickness.data();
-    splat_cpu(args, 2);
+    cpu_twin(args, 2);
   }
   double volume_mm3() const {
     const double pixel_area = 0.01 * 0.01;

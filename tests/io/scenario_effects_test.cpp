@@ -527,7 +527,8 @@ TEST(ScenarioBlur, EachKeyOutOfRangeIsRefusedAtItsLine) {
 }
 
 TEST(ScenarioBlur, WithoutParticlesIsRefusedAtItsHeader) {
-  const std::string gist = "blurs the particles' film: this scene declares no [particles]";
+  const std::string gist = "the blur stage reads splat/thickness, which the splat stage writes; a scene calls for "
+                           "that stage with a [particles] table, and this one has none";
   // kBase declares the spread but no particles.
   EXPECT_TRUE(refused_at(kBase + "[blur]\n", kEnd, "blur", gist));
   // At the header even when the table sets keys, good or bad.

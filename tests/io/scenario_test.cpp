@@ -376,8 +376,8 @@ TEST(ScenarioBadInput, CutWrittenAsASingleTable) {
 TEST(ScenarioBadInput, OutputFieldWithAnUnknownName) {
   EXPECT_TRUE(refused_at(kBase + "fields = [\n  \"spread/stain\",\n  \"spread/blood\",\n]\n", kEnd + 2,
                          "output.fields[1]",
-                         "unknown field 'spread/blood' (known: spread/stain, splat/thickness, blur/thickness, particles/accounting, "
-                         "particles/position, particles/velocity, particles/age)"));
+                         "unknown field 'spread/blood' (known: spread/stain, particles/position, particles/velocity, particles/age, "
+                         "particles/accounting, splat/thickness, blur/thickness; the frame is always written)"));
 }
 
 TEST(ScenarioBadInput, OutputFieldOfAnEffectTheSceneDoesNotDeclare) {

@@ -1,0 +1,93 @@
+#include "core/effects/stage_kinds.h"
+
+#include "core/effects/blend_stage.h"
+#include "core/effects/blur_stage.h"
+#include "core/effects/particle_stage.h"
+#include "core/effects/splat_stage.h"
+#include "core/effects/spread_stage.h"
+
+namespace bleedsim {
+namespace {
+
+// A field with one value (of `channels` components) per pixel of the panel.
+FieldLayout image(const char* name, ElementType type, int channels, const char* unit, const char* description) {
+  FieldLayout field;
+  field.name = name;
+  field.type = type;
+  field.channels = channels;
+  field.unit = unit;
+  field.description = description;
+  return field;
+}
+
+// A field of one row of elements (ring-buffer slots, or counters); `on_request`: written to files
+// only when the scene lists it.
+FieldLayout elements(const char* name, ElementType type, int channels, bool on_request, const char* unit,
+                     const char* description) {
+  FieldLayout field = image(name, type, channels, unit, description);
+  field.image = false;
+  field.on_request = on_request;
+  return field;
+}
+
+std::vector<std::string> no_fields(const Scene&) { return {}; }
+
+template <class S>
+std::unique_ptr<Stage> make(const StageKind& kind, const Scene& scene, State& state, Backend& backend) {
+  return std::make_unique<S>(kind, scene, state, backend);
+}
+
+}  // namespace
+
+const FieldLayout* StageKind::written(const std::string& field) const {
+  for (const FieldLayout& layout : writes)
+    if (layout.name == field) return &layout;
+  return nullptr;
+}
+
+const std::vector<StageKind>& stage_kinds() {
+  static const std::vector<StageKind> kinds = {
+      {"spread", "spread", [](const Scene& s) { return s.spread.has_value(); },
+       {image("spread/stain", ElementType::f32, 1, "1",
+              "radial-spread stain: fraction of the tissue's green and blue taken out (report 2.2.1)")},
+       no_fields, SpreadStage::bytes_for, make<SpreadStage>},
+      {"particles", "particles", [](const Scene& s) { return s.particles.has_value(); },
+       {elements("particles/position", ElementType::f32, 2, true, "mm", "centre of each ring-buffer slot's particle"),
+        elements("particles/velocity", ElementType::f32, 2, true, "mm/s", "velocity of each slot's particle"),
+        elements("particles/age", ElementType::u32, 1, true, "steps",
+                 "steps each slot's particle has lived; a slot holds a live particle while its age is below the "
+                 "lifetime"),
+        elements("particles/accounting", ElementType::u64, 1, false, "particles",
+                 "emitted, alive, expired, overwritten: emitted = alive + expired + overwritten")},
+       no_fields, ParticleStage::bytes_for, make<ParticleStage>},
+      {"splat", "particles", [](const Scene& s) { return s.particles.has_value(); },
+       {image("splat/thickness", ElementType::f32, 1, "mm",
+              "thickness of the film of blood the particles make: each one's volume spread over its splat radius")},
+       [](const Scene&) { return std::vector<std::string>{"particles/position", "particles/age"}; },
+       SplatStage::bytes_for, make<SplatStage>},
+      {"blur", "blur", [](const Scene& s) { return s.blur.has_value(); },
+       {image("blur/thickness", ElementType::f32, 1, "mm",
+              "the film of blood downsampled, blurred and upsampled: what the blend lays over the tissue")},
+       [](const Scene&) { return std::vector<std::string>{"splat/thickness"}; }, BlurStage::bytes_for,
+       make<BlurStage>},
+      {"blend", "", [](const Scene&) { return true; },
+       {image("frame", ElementType::u8, 4, "sRGB 8-bit",
+              "the rendered frame: blood composited over the tissue (RGBA)")},
+       [](const Scene& s) {
+         std::vector<std::string> reads;
+         for (const char* field : {blend_stain_field(s), blend_film_field(s)})
+           if (field) reads.push_back(field);
+         return reads;
+       },
+       BlendStage::bytes_for, make<BlendStage>},
+  };
+  return kinds;
+}
+
+const StageKind* stage_writing(const std::string& field) {
+  for (const StageKind& kind : stage_kinds())
+    if (kind.written(field)) return &kind;
+  return nullptr;
+}
+
+}  // namespace bleedsim
