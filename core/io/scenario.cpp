@@ -3,18 +3,15 @@
 #include <toml++/toml.h>
 
 #include <algorithm>
-#include <cerrno>
 #include <cstdint>
-#include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <optional>
-#include <sstream>
 #include <type_traits>
 #include <utility>
 
 #include "core/effects/pipeline.h"
 #include "core/effects/stage_kinds.h"
+#include "core/io/text_file.h"
 #include "core/io/tissue_png.h"
 #include "core/io/trace_csv.h"
 #include "core/runtime/memory.h"
@@ -385,15 +382,7 @@ Scenario parse_scenario(const std::string& text, const std::string& path) {
 }
 
 Scenario load_scenario(const std::string& path) {
-  const SourcePlace file{path, 0, 0};
-  std::error_code ec;
-  if (fs::is_directory(path, ec)) throw InputError(file, "", "cannot read scenario file: it is a folder");
-  errno = 0;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(file, "", std::string("cannot read scenario file: ") + std::strerror(errno ? errno : ENOENT));
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_scenario(text.str(), path);
+  return parse_scenario(read_text_file(path, "scenario"), path);
 }
 
 const ParamTable<OutputSpec>& output_table() {

@@ -11,6 +11,7 @@
 #include <sstream>
 #include <utility>
 
+#include "core/io/text_file.h"
 #include "core/runtime/message_text.h"
 
 namespace bleedsim {
@@ -359,15 +360,7 @@ Trace parse_trace(const std::string& text, const std::string& path, const TraceO
 }
 
 Trace load_trace(const std::string& path, const TraceOptions& options) {
-  const SourcePlace file{path, 0, 0};
-  std::error_code ec;
-  if (fs::is_directory(path, ec)) throw InputError(file, "", "cannot read trace file: it is a folder");
-  errno = 0;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(file, "", std::string("cannot read trace file: ") + std::strerror(errno ? errno : ENOENT));
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_trace(text.str(), path, options);
+  return parse_trace(read_text_file(path, "trace"), path, options);
 }
 
 }  // namespace bleedsim

@@ -31,6 +31,10 @@ struct ParamProblem {
 // The values a number allows: low … high (low itself excluded when `above`: sizes must be > 0),
 // and, when `only` is given, one of those.
 struct Range {
+  Range() = default;
+  Range(double low_end, double high_end, bool low_excluded = false, std::vector<double> one_of = {})
+      : low(low_end), high(high_end), above(low_excluded), only(std::move(one_of)) {}
+
   double low = 0;
   double high = 0;
   bool above = false;

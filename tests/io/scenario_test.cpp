@@ -142,7 +142,6 @@ TEST(ScenarioParse, ReadsEverySceneField) {
 
 TEST(ScenarioParse, RecordsWhereEachKeyWasWritten) {
   const Scenario scenario = parse_scenario(kFull, kPath);
-  const Scene& scene = scenario.scene;
   const auto expect_line = [&](const std::string& key, int line) {
     const SourcePlace place = scenario.place_of(key);
     EXPECT_EQ(place.file, kPath) << key;
