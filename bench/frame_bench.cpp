@@ -135,7 +135,7 @@ struct FrameScene {
     units = backend->allocate(pixels * sizeof(std::uint64_t));
     film = backend->allocate(pixels * sizeof(float));
     splat_args.lifetime = particle_lifetime(scene);
-    splat_args.splat = make_splat_model(*scene.particles);
+    splat_args.splat = make_splat_model(*scene.particles, scene.domain);
     splat_args.capacity = n;
     splat_args.grid = grid;
     splat_args.units = units.as<std::uint64_t>();

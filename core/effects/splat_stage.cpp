@@ -1,7 +1,5 @@
 #include "core/effects/splat_stage.h"
 
-#include <cmath>
-
 #include "core/effects/particle_model.h"
 #include "core/physics/splat.h"
 
@@ -12,13 +10,13 @@ std::size_t pixels(const Scene& scene) { return std::size_t(scene.domain.pixel_c
 
 }  // namespace
 
-SplatModel make_splat_model(const ParticleParams& p) {
+SplatModel make_splat_model(const ParticleParams& p, const Domain& domain) {
   const double r = p.splat_radius_mm > 0.0 ? p.splat_radius_mm : p.diameter_mm;
-  const double footprint_mm2 = M_PI * r * r / 3.0;  // ∫ (1 − d²/R²)² dA over the disc
+  const double pixel_area_mm2 = domain.width_mm / domain.width_px * (domain.height_mm / domain.height_px);
   SplatModel s{};
   s.radius_mm = float(r);
   s.radius_sq = float(r * r);
-  s.units_per_volume = float(double(kSplatUnitsPerMm) / footprint_mm2);
+  s.units_per_mm3 = float(double(kSplatUnitsPerMm) / pixel_area_mm2);
   s.particle_volume_mm3 = float(p.particle_volume_mm3);
   return s;
 }
@@ -29,7 +27,7 @@ SplatStage::SplatStage(const StageKind& kind, const Scene& scene, State& state, 
   const Field& age = input(scene, state, "particles/age");
   Field& thickness = add_field(scene, state, backend, "splat/thickness");
   args_.lifetime = particle_lifetime(scene);
-  args_.splat = make_splat_model(*scene.particles);
+  args_.splat = make_splat_model(*scene.particles, scene.domain);
   args_.position = position.data.as<const float>();
   args_.age = age.data.as<const std::uint32_t>();
   args_.capacity = scene.particles->capacity;

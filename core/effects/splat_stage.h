@@ -19,7 +19,7 @@ class SplatStage final : public Stage {
   Buffer units_;  // the fixed-point sum
 };
 
-// The splat's constants for a scene with particles.
-SplatModel make_splat_model(const ParticleParams& params);
+// The splat's constants for a scene with particles, on its panel's pixels.
+SplatModel make_splat_model(const ParticleParams& params, const Domain& domain);
 
 }  // namespace bleedsim

@@ -3,11 +3,21 @@
 // film over the panel, thickest under its centre and falling smoothly to nothing at the splat
 // radius, so a pile reads as one continuous layer rather than dots.
 //
-// A particle of volume V at distance d from a pixel's centre adds
-//   V · fade · w(d) / A,   w(d) = (1 − d²/R²)²  for d < R,   A = ∫ w dA = π R² / 3,
-// millimetres of blood: the footprint integrates to V, so the field holds the blood's volume
-// (fade aside). Deposits are summed in fixed point, 64-bit integer units of kSplatUnitMm: integer
-// addition is associative, so the CPU's loop and the GPU's atomics give the same sum in any order.
+// A particle of volume V weighs each pixel whose centre lies at distance d < R from its own by
+//   w(d) = (1 − d²/R²)²,
+// and the pixel receives the share w / S of its blood, S = Σ w over those pixels:
+//   h += V · fade · w / (S · pixel area)   millimetres,
+// so the film holds exactly V · fade on any pixel pitch: on pixels much finer than R this is the
+// analytic V · fade · w / (π R²/3); on pixels as coarse as the splat it still holds the whole
+// volume, where a fixed scale would deposit anywhere from none of it to several times it. A splat
+// that reaches no pixel centre (S = 0: it falls between them, or R is under a pixel) puts all of
+// its blood into the pixel holding its centre. A splat cut by the panel's edge keeps its whole
+// volume on the panel, spread over the pixels inside: blood at the edge is blood on the panel.
+//
+// Deposits are summed in fixed point, 64-bit integer units of kSplatUnitMm: integer addition is
+// associative, so the CPU's loop and the GPU's atomics give the same sum in any order. The
+// weights are whole units too, so S is exact and a particle's deposits add up to its blood to
+// their own rounding alone: each is off by at most half a unit.
 #include <cstddef>
 #include <cstdint>
 
@@ -20,14 +30,18 @@ namespace bleedsim {
 // 2⁻²⁴ mm (6e-8 mm, far below anything visible).
 constexpr float kSplatUnitMm = 1.0f / 16777216.0f;
 constexpr float kSplatUnitsPerMm = 16777216.0f;
-// One deposit at most, in units (a deposit beyond it is clamped before it becomes an integer).
+// A particle's whole blood in one pixel at most, in units (more is clamped before it becomes an
+// integer; the particles' rule deposit_fits keeps a scene below it).
 constexpr float kMaxDepositUnits = 1.0e9f;
+// A footprint weight w ∈ [0, 1] in whole units of 2⁻²³, rounded half up (2²³ · w + ½ is exact in
+// float from one unit up, so the rounding is exactly half up there).
+constexpr float kSplatWeightUnits = 8388608.0f;
 
 // The splat's constants for a run, made on the host.
 struct SplatModel {
-  float radius_mm;         // R
-  float radius_sq;         // R²
-  float units_per_volume;  // kSplatUnitsPerMm / A: deposit units per mm³ at the centre
+  float radius_mm;      // R
+  float radius_sq;      // R²
+  float units_per_mm3;  // kSplatUnitsPerMm / pixel area: film units of one mm³ of blood in one pixel
   float particle_volume_mm3;
 };
 
@@ -49,29 +63,75 @@ BLEEDSIM_HD inline float splat_weight(const SplatModel& s, float d2) {
   return q * q;
 }
 
-// Calls deposit(pixel, units) for each pixel whose centre lies within R of the particle in `slot`.
+BLEEDSIM_HD inline std::uint64_t weight_units(float w) { return std::uint64_t(w * kSplatWeightUnits + 0.5f); }
+
+// A particle's blood, V · fade, as film units in a single pixel, rounded half up.
+BLEEDSIM_HD inline std::uint64_t blood_units(const SplatModel& s, float fade) {
+  return std::uint64_t(fminf(s.particle_volume_mm3 * fade * s.units_per_mm3, kMaxDepositUnits) + 0.5f);
+}
+
+// The pixels a splat at (x, y) may reach: those whose centres lie within R, on the panel.
+struct SplatFootprint {
+  float x, y;
+  int i0, i1, j0, j1;  // inclusive; empty when i1 < i0 or j1 < j0
+};
+
+BLEEDSIM_HD inline SplatFootprint splat_footprint(const SplatModel& s, const PixelGrid& g, float x, float y) {
+  const float w = float(g.width), h = float(g.height), r = s.radius_mm;
+  // Clamped before the conversions: float→int of out-of-range values differs between CPU and GPU.
+  return {x, y,
+          int(clamp_float(ceilf((x - r) / g.mm_per_px_x - 0.5f), 0.0f, w)),
+          int(clamp_float(floorf((x + r) / g.mm_per_px_x - 0.5f), -1.0f, w - 1.0f)),
+          int(clamp_float(ceilf((y - r) / g.mm_per_px_y - 0.5f), 0.0f, h)),
+          int(clamp_float(floorf((y + r) / g.mm_per_px_y - 0.5f), -1.0f, h - 1.0f))};
+}
+
+// Calls visit(pixel, weight in units) for each pixel of the footprint, rows top to bottom, each
+// left to right: both sweeps of a particle see the same weights in the same order.
+template <class Visit>
+BLEEDSIM_HD inline void for_each_weight(const SplatModel& s, const PixelGrid& g, const SplatFootprint& f, Visit visit) {
+  for (int j = f.j0; j <= f.j1; ++j) {
+    const float dy = pixel_centre_y_mm(g, j) - f.y;
+    for (int i = f.i0; i <= f.i1; ++i) {
+      const float dx = pixel_centre_x_mm(g, i) - f.x;
+      visit(std::size_t(j) * std::size_t(g.width) + std::size_t(i), weight_units(splat_weight(s, dx * dx + dy * dy)));
+    }
+  }
+}
+
+// The pixel holding (x, y), clamped to the panel.
+BLEEDSIM_HD inline std::size_t pixel_containing(const PixelGrid& g, float x, float y) {
+  const int i = int(clamp_float(floorf(x / g.mm_per_px_x), 0.0f, float(g.width - 1)));
+  const int j = int(clamp_float(floorf(y / g.mm_per_px_y), 0.0f, float(g.height - 1)));
+  return std::size_t(j) * std::size_t(g.width) + std::size_t(i);
+}
+
+// blood · weight / total, rounded half up, in integers: exact, so the same on both backends.
+// blood < 2³⁰ and weight ≤ 2²³, so 2 · blood · weight stays far inside 64 bits.
+BLEEDSIM_HD inline std::uint64_t share_of(std::uint64_t blood, std::uint64_t weight, std::uint64_t total) {
+  return (2 * blood * weight + total) / (2 * total);
+}
+
+// Calls deposit(pixel, units) for each pixel that receives a share of the particle in `slot`: one
+// sweep sums its footprint's weights, a second hands out the blood in proportion.
 template <class Deposit>
 BLEEDSIM_HD inline void splat_particle(const SplatArgs& a, int slot, Deposit deposit) {
   const std::uint32_t age = a.age[slot];
   if (!is_alive(a.lifetime, age)) return;
-  const PixelGrid& g = a.grid;
+  const std::uint64_t blood = blood_units(a.splat, fade_alpha(a.lifetime, age));
+  if (blood == 0) return;
   const float x = a.position[2 * slot], y = a.position[2 * slot + 1];
-  const float w = float(g.width), h = float(g.height), r = a.splat.radius_mm;
-  // Clamped before the conversions: float→int of out-of-range values differs between CPU and GPU.
-  const int i0 = int(clamp_float(ceilf((x - r) / g.mm_per_px_x - 0.5f), 0.0f, w));
-  const int i1 = int(clamp_float(floorf((x + r) / g.mm_per_px_x - 0.5f), -1.0f, w - 1.0f));
-  const int j0 = int(clamp_float(ceilf((y - r) / g.mm_per_px_y - 0.5f), 0.0f, h));
-  const int j1 = int(clamp_float(floorf((y + r) / g.mm_per_px_y - 0.5f), -1.0f, h - 1.0f));
-  const float centre_units = a.splat.particle_volume_mm3 * fade_alpha(a.lifetime, age) * a.splat.units_per_volume;
-  for (int j = j0; j <= j1; ++j) {
-    const float dy = pixel_centre_y_mm(g, j) - y;
-    for (int i = i0; i <= i1; ++i) {
-      const float dx = pixel_centre_x_mm(g, i) - x;
-      const float units = fminf(centre_units * splat_weight(a.splat, dx * dx + dy * dy), kMaxDepositUnits);
-      const std::uint64_t whole = std::uint64_t(units + 0.5f);
-      if (whole != 0) deposit(std::size_t(j) * std::size_t(g.width) + std::size_t(i), whole);
-    }
+  const SplatFootprint f = splat_footprint(a.splat, a.grid, x, y);
+  std::uint64_t total = 0;
+  for_each_weight(a.splat, a.grid, f, [&](std::size_t, std::uint64_t w) { total += w; });
+  if (total == 0) {
+    deposit(pixel_containing(a.grid, x, y), blood);
+    return;
   }
+  for_each_weight(a.splat, a.grid, f, [&](std::size_t pixel, std::uint64_t w) {
+    const std::uint64_t units = share_of(blood, w, total);
+    if (units != 0) deposit(pixel, units);
+  });
 }
 
 BLEEDSIM_HD inline float thickness_from_units(std::uint64_t units) { return float(units) * kSplatUnitMm; }

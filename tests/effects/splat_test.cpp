@@ -1,5 +1,6 @@
-// The film of blood: the splat keeps the blood's volume, sums in any order to the same bits, and
-// fades; the Beer–Lambert blend's table follows exp(−x) and colours thin films red, pools dark.
+// The film of blood: the splat keeps each particle's volume on any pixel pitch, keeps the shape of
+// its footprint where pixels are fine, sums in any order to the same bits, and fades; the
+// Beer–Lambert blend's table follows exp(−x) and colours thin films red, pools dark.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -15,43 +16,121 @@
 namespace bleedsim {
 namespace {
 
-// A 0.01 mm/px panel with the given particles, all alive (ages given), splatted on the CPU.
+constexpr double kUnitRoundoff = 1.0 / 16777216.0;  // float32's: one rounding is within 2⁻²⁴
+
+// A square panel of `size` pixels of `pitch_mm` with the given particles of the default volume, all
+// alive (ages given), splatted on the CPU.
 struct Film {
+  Domain domain;
   std::vector<float> position;
   std::vector<std::uint32_t> age;
   std::vector<std::uint64_t> units;
   std::vector<float> thickness;
   SplatArgs args{};
 
-  Film(std::vector<float> xy, std::vector<std::uint32_t> ages, float radius_mm, int size = 200)
-      : position(std::move(xy)), age(std::move(ages)) {
+  Film(std::vector<float> xy, std::vector<std::uint32_t> ages, float radius_mm, double pitch_mm = 0.01,
+       int size = 200)
+      : domain{size, size, size * pitch_mm, size * pitch_mm}, position(std::move(xy)), age(std::move(ages)) {
     ParticleParams params;
     params.splat_radius_mm = radius_mm;
     args.lifetime = {1000, 100};
-    args.splat = make_splat_model(params);
+    args.splat = make_splat_model(params, domain);
     args.position = position.data();
     args.age = age.data();
     args.capacity = int(age.size());
-    args.grid = PixelGrid{size, size, 0.01f, 0.01f};
+    args.grid = domain.grid();
     units.resize(std::size_t(size) * size);
     thickness.resize(units.size());
     args.units = units.data();
     args.thickness_mm = thickness.data();
     cpu_twin(args, 2);
   }
+  double pixel_mm() const { return domain.width_mm / domain.width_px; }
+  double pixel_area_mm2() const { return pixel_mm() * pixel_mm(); }
+  std::uint64_t total_units() const { return std::accumulate(units.begin(), units.end(), std::uint64_t(0)); }
   double volume_mm3() const {
-    const double pixel_area = 0.01 * 0.01;
-    return std::accumulate(thickness.begin(), thickness.end(), 0.0) * pixel_area;
+    return std::accumulate(thickness.begin(), thickness.end(), 0.0) * pixel_area_mm2();
+  }
+  // Pixels whose centres lie within r of (x, y): the most that a splat there deposits into.
+  int pixels_within(double x, double y, double r) const {
+    int n = 0;
+    for (int j = 0; j < domain.height_px; ++j)
+      for (int i = 0; i < domain.width_px; ++i)
+        n += std::hypot((i + 0.5) * pixel_mm() - x, (j + 0.5) * pixel_mm() - y) < r;
+    return n;
   }
 };
 
-TEST(Splat, AParticlesFilmHoldsItsVolume) {
-  const Film film({1.0f, 1.0f}, {0}, 0.2f);  // R = 20 px, well inside the 2 mm panel
-  EXPECT_NEAR(film.volume_mm3(), ParticleParams{}.particle_volume_mm3, 0.004 * 0.005);
-  // Thickest at the centre, (1 − d²/R²)² of it halfway out, nothing beyond R.
-  const float centre = film.thickness[100 * 200 + 100];
-  EXPECT_GT(centre, 0.0f);
-  EXPECT_EQ(film.thickness[100 * 200 + 100 + 25], 0.0f);
+// A lone particle's film holds its blood, V · fade, on pixels from 1/20 of the splat radius to 5×
+// it: clear of the edges, exactly between pixel centres (a pixel corner), at the panel's corner
+// (a quarter of the footprint on the panel), on an edge. The bound, in two steps:
+//  - its blood in film units, T = V · fade / (pixel area · 2⁻²⁴ mm), is computed in float32 (V, the
+//    units per mm³ and two products: 4 roundings of 2⁻²⁴) and rounded half up: within
+//    ½ + 4 · 2⁻²⁴ · T units;
+//  - each of its n deposits is its share T · wₚ / S rounded half up, exactly in integers: the
+//    deposits add up to T within n/2 units (n: the pixels whose centres the splat reaches; where
+//    it reaches none, all of T goes into one pixel, exactly).
+TEST(Splat, AParticlesFilmHoldsItsVolumeOnAnyPixelPitch) {
+  const float r = 0.2f;
+  const double blood_mm3 = ParticleParams{}.particle_volume_mm3;
+  for (const double pitch : {0.01, 0.02, 0.05, 0.1, 0.2, 0.4, 1.0}) {
+    const int size = std::max(10, int(std::lround(2.0 / pitch)));
+    const float side = float(size * pitch), corner = float(std::round(0.37 * size) * pitch);
+    const std::vector<std::vector<float>> places = {
+        {0.4137f * side, 0.5291f * side}, {corner, corner}, {0.0f, 0.0f}, {0.5f * side + 0.003f, side}};
+    for (const std::vector<float>& xy : places) {
+      SCOPED_TRACE(testing::Message() << "pitch " << pitch << " mm, particle at (" << xy[0] << ", " << xy[1] << ")");
+      const Film film(xy, {0}, r, pitch, size);
+      const int n = film.pixels_within(xy[0], xy[1], r);
+      const std::uint64_t blood = blood_units(film.args.splat, 1.0f);
+      const double exact_units = blood_mm3 / (film.pixel_area_mm2() * kSplatUnitMm);
+      EXPECT_LE(std::abs(double(blood) - exact_units), 0.5 + 4.0 * kUnitRoundoff * exact_units);
+      EXPECT_LE(std::abs(double(film.total_units()) - double(blood)), 0.5 * n);
+      const double held_mm3 = double(film.total_units()) * kSplatUnitMm * film.pixel_area_mm2();
+      EXPECT_LE(std::abs(held_mm3 - blood_mm3),
+                (0.5 * n + 0.5) * kSplatUnitMm * film.pixel_area_mm2() + 4.0 * kUnitRoundoff * blood_mm3);
+    }
+  }
+}
+
+// A splat that reaches no pixel centre (it lies between them, or is smaller than a pixel) puts all
+// of its blood into the pixel holding its centre; one at a pixel corner that reaches the four
+// centres around it shares it equally among them. (Half-millimetre pixels: every coordinate here
+// is exact in float.)
+TEST(Splat, ASplatBetweenPixelCentresKeepsItsBlood) {
+  const Film between({1.0f, 0.5f}, {0}, 0.3f, 0.5, 10);  // a pixel corner, 0.354 mm from four centres
+  const std::uint64_t blood = blood_units(between.args.splat, 1.0f);
+  EXPECT_EQ(between.units[1 * 10 + 2], blood);
+  EXPECT_EQ(between.total_units(), blood);
+
+  const Film small({0.3f, 0.2f}, {0}, 0.05f, 0.5, 10);  // R a tenth of a pixel, off its centre
+  EXPECT_EQ(small.units[0], blood);
+  EXPECT_EQ(small.total_units(), blood);
+
+  const Film shared({1.0f, 0.5f}, {0}, 0.4f, 0.5, 10);  // the same corner, R past the four centres
+  const std::uint64_t quarter = shared.units[0 * 10 + 1];
+  for (const int p : {0 * 10 + 2, 1 * 10 + 1, 1 * 10 + 2}) EXPECT_EQ(shared.units[p], quarter) << p;
+  EXPECT_EQ(shared.total_units(), 4 * quarter);
+  EXPECT_LE(std::abs(double(4 * quarter) - double(blood)), 4 * 0.5);
+}
+
+// On pixels a twentieth of R the film keeps the footprint's shape: each pixel holds (1 − d²/R²)² of
+// the centre's film. Pixels of 1/128 mm and R = 20 of them: distances are exact in float, so the
+// bound is the two deposits' rounding (half a unit each, against over 10⁶ units at the centre), the
+// two weights' (half of 2⁻²³ each, against the centre's 1) and float32's rounding of d²/R² and of
+// the square (2⁻²⁴ of each, twice for d²/R² as the square doubles it).
+TEST(Splat, OnFinePixelsTheFilmKeepsTheFootprintsShape) {
+  const double pitch = 1.0 / 128.0, r = 20 * pitch;
+  const Film film({128.5f / 128.0f, 128.5f / 128.0f}, {0}, float(r), pitch, 256);  // on pixel (128, 128)
+  const double centre = double(film.units[128 * 256 + 128]);
+  ASSERT_GT(centre, 1.0e6);
+  const double allowed = 1.0 / centre + 1.0 / 8388608.0 + 3.0 * kUnitRoundoff;
+  for (int j = 100; j <= 156; ++j)
+    for (int i = 100; i <= 156; ++i) {
+      const double d = std::hypot(i - 128, j - 128) * pitch;
+      const double q = std::max(0.0, 1.0 - d * d / (r * r));
+      EXPECT_NEAR(double(film.units[j * 256 + i]) / centre, q * q, allowed) << i << ", " << j;
+    }
 }
 
 TEST(Splat, TheSumDoesNotDependOnTheParticlesOrder) {
@@ -75,7 +154,9 @@ TEST(Splat, AFadingParticleLeavesLessAndADeadOneNothing) {
   const Film full({1.0f, 1.0f}, {0}, 0.2f);
   const Film fading({1.0f, 1.0f}, {950}, 0.2f);  // 50 of its 100 fade steps left: half
   const Film dead({1.0f, 1.0f}, {1000}, 0.2f);
-  EXPECT_NEAR(fading.volume_mm3(), 0.5 * full.volume_mm3(), 1e-7);
+  // Half the blood, each within the rounding of its n deposits and of its blood in units.
+  const int n = full.pixels_within(1.0, 1.0, 0.2);
+  EXPECT_NEAR(fading.volume_mm3(), 0.5 * full.volume_mm3(), (n + 1.0) * kSplatUnitMm * full.pixel_area_mm2());
   EXPECT_EQ(dead.volume_mm3(), 0.0);
 }
 
