@@ -11,9 +11,10 @@ rounding:
   lifetime; which ring slots hold the live particles and their ages; every live centre inside the
   panel less a radius;
 - the film of blood (splat/thickness, mm) recomputed from the stored positions and ages: each live
-  particle adds V · fade · (1 − d²/R²)² / (π R² / 3) to every pixel whose centre lies at d < R
-  from it; and the film's volume, sum × pixel area, against the particles' V · fade (less what
-  falls off the panel);
+  particle shares its blood, V · fade, among the pixels whose centres lie at d < R from it in
+  proportion to (1 − d²/R²)², or puts it all into the pixel holding its centre where it reaches
+  none; and the film's volume, sum × pixel area, against the particles' V · fade, exactly but for
+  the fixed point's rounding (a splat cut by the panel's edge keeps all of its blood on the panel);
 - for scenes with a [blur] table too (docs/particles.md#the-blur), the blurred film
   (blur/thickness, mm) recomputed from the stored splat/thickness (block means, the normalised
   Gaussian across and down with clamped taps, the bilinear upsample), to a bound on float32's

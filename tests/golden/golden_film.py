@@ -9,19 +9,27 @@ import numpy as np
 
 EDGE_MM = 1e-5           # a pixel centre this close to a splat's edge may fall either side in float32
 NEVER_USED = 0xFFFFFFFF  # the age of a ring slot that never held a particle
+FLOAT32_UNIT = 2.0 ** -24       # float32's unit roundoff: one rounding is off by at most this, relatively
 
-# The film (core/physics/splat.h, docs/particles.md): deposits are summed in whole units of 2⁻²⁴ mm, each
-# rounded half up from its float32 value (so each is off by up to half a unit, and a little more
-# for float32's products) and clamped at 1e9 units.
+# The film (core/physics/splat.h, docs/particles.md#the-film-of-blood): a live particle's blood as
+# film over one pixel, T = V · fade / (pixel area · 2⁻²⁴ mm), in whole units of 2⁻²⁴ mm (rounded
+# half up from float32, at most 1e9), is shared among the pixels whose centres its splat reaches, in
+# proportion to their weights w = (1 − d²/R²)² (each in whole units of 2⁻²³), each share rounded
+# half up; a splat whose weights all round to 0 puts all of T into the pixel holding its centre.
 SPLAT_UNIT_MM = 2.0 ** -24
-SPLAT_MAX_DEPOSIT_MM = 1.0e9 * SPLAT_UNIT_MM
-# float32's arithmetic on a deposit (its scale V · fade / A and the weight's 1 − d²/R², squared):
-# a few roundings, each of at most 2⁻²⁴ of the particle's centre deposit.
-SPLAT_RELATIVE = 2e-6
+SPLAT_MAX_UNITS = 1.0e9
+WEIGHT_UNIT = 2.0 ** -23
+# float32's roundings of T: V, the fade's two conversions and its division, the units per mm³ and
+# two products; 7 of 2⁻²⁴, 8 allowed for the second-order terms.
+BLOOD_RELATIVE = 8 * FLOAT32_UNIT
+# float32's roundings of a weight q², q = 1 − t, t = d²/R²: the two differences, their squares and
+# sum, R² and the division put t within 6u·t of itself; 1 − t adds u·q, so q is within 7u; the
+# square is then within 2q·7u + (7u)² + u·q²: 16u·q + (8u)² allowed.
+WEIGHT_ROUNDINGS = 16 * FLOAT32_UNIT
+WEIGHT_FLOOR = (8 * FLOAT32_UNIT) ** 2
 # Where the reference puts a pixel's centre: (i + 0.5) · float32(mm per pixel), in float32, off
 # the exact centre by up to 2⁻²³ of the coordinate; so d by up to (width + height) · 2⁻²³ mm.
 PIXEL_CENTRE_RELATIVE = 2.0 ** -23
-FINE = 16                              # sub-cells per pixel side of the film's volume integrals
 
 
 def pixel_centres(scene):
@@ -93,11 +101,6 @@ def replay(settings, step_of_id, steps_done):
 
 # ---- the film of blood -----------------------------------------------------------------------
 
-def footprint_mm2(r):
-    """∫ (1 − d²/R²)² dA over the disc of radius R: a film of V / this at the centre holds V."""
-    return math.pi * r * r / 3.0
-
-
 def centre_error_mm(scene):
     """How far the reference's float32 pixel centres may put d from the exact one."""
     return (scene["width_mm"] + scene["height_mm"]) * PIXEL_CENTRE_RELATIVE
@@ -108,107 +111,124 @@ def edge_band_mm(scene):
     return max(EDGE_MM, centre_error_mm(scene))
 
 
-def splat_pairs(settings, scene, position, age):
-    """Every (live particle, pixel) pair whose pixel centre lies closer than R + the edge band to the
-    particle: the pixel (a flat index), the distance d, and the particle's film at its centre,
-    V · fade / A, in mm."""
+def splat_pairs(scene, r, x, y):
+    """Every (particle, pixel) pair whose pixel centre lies closer than R + the edge band to the
+    particle, on the panel: the particle (an index into x, y), the pixel (a flat index) and the
+    distance d."""
     w, h = scene["width_px"], scene["height_px"]
     px, py = scene["width_mm"] / w, scene["height_mm"] / h
     cx, cy = pixel_centres(scene)
-    r, band = settings["splat_radius"], edge_band_mm(scene)
-    fade = np.minimum(1.0, (settings["lifetime"] - age.astype(np.float64)) / settings["fade"])
-    centre = settings["volume"] * fade / footprint_mm2(r)
-    x, y = position[:, 0].astype(np.float64), position[:, 1].astype(np.float64)
-    finite = np.isfinite(x) & np.isfinite(y)   # a non-finite centre is check 3's to report
-    x, y, centre = x[finite], y[finite], centre[finite]
-    k = int(math.ceil((r + band) / min(px, py))) + 1
+    reach = r + edge_band_mm(scene)
+    k = int(math.ceil(reach / min(px, py))) + 1
     offsets = np.arange(-k, k + 1)
     ii = np.floor(x / px).astype(np.int64)[:, None, None] + offsets[None, None, :]
     jj = np.floor(y / py).astype(np.int64)[:, None, None] + offsets[None, :, None]
     ii, jj = np.broadcast_arrays(ii, jj)
     d = np.hypot(cx[np.clip(ii, 0, w - 1)] - x[:, None, None], cy[np.clip(jj, 0, h - 1)] - y[:, None, None])
-    near = (ii >= 0) & (ii < w) & (jj >= 0) & (jj < h) & (d < r + band)
-    which = np.broadcast_to(np.arange(x.size)[:, None, None], d.shape)[near]
-    return (jj * w + ii)[near], d[near], centre[which]
+    near = (ii >= 0) & (ii < w) & (jj >= 0) & (jj < h) & (d < reach)
+    particle = np.broadcast_to(np.arange(x.size)[:, None, None], d.shape)[near]
+    return particle, (jj * w + ii)[near], d[near]
+
+
+def holding_pixels(scene, x, y):
+    """The pixel holding each centre (clamped to the panel), and four candidates per particle for
+    the reference's: its float32 x / (mm per pixel) is within 2 · 2⁻²⁴ of the exact quotient (the
+    float32 pixel size, the division), under width · 2⁻²³ pixels, so a centre within twice that of
+    a pixel edge may fall either side. Returns the pixel, the candidates (particles × 4, each
+    listed once, the rest -1) and whether there is more than one."""
+    w, h = scene["width_px"], scene["height_px"]
+    fx, fy = x / (scene["width_mm"] / w), y / (scene["height_mm"] / h)
+    mx, my = 4 * FLOAT32_UNIT * w, 4 * FLOAT32_UNIT * h
+
+    def column(v, n):
+        return np.clip(np.floor(v), 0, n - 1).astype(np.int64)
+    i, j = [column(fx - mx, w), column(fx + mx, w)], [column(fy - my, h), column(fy + my, h)]
+    candidates = np.stack([j[b] * w + i[a] for a in (0, 1) for b in (0, 1)], axis=1)
+    for c in range(1, 4):
+        repeated = (candidates[:, c, None] == candidates[:, :c]).any(axis=1)
+        candidates[repeated, c] = -1
+    return column(fy, h) * w + column(fx, w), candidates, (candidates[:, 1:] >= 0).any(axis=1)
 
 
 def expected_thickness(settings, scene, position, age):
-    """The film recomputed from the live particles, as H × W fields:
+    """The film recomputed from the live particles, in film units (2⁻²⁴ mm), as H × W fields:
 
-    exact    Σ V · fade · (1 − d²/R²)² / A over the pairs with d < R, in float64;
-    allowed  what the reference's float32 may differ by, summed over the pairs: half a unit of
-             rounding and float32's products (a unit, with SPLAT_RELATIVE of the centre deposit),
-             and the deposit's slope times how far its float32 pixel centre may lie from the
-             exact one;
-    edge     for the pairs whose centre lies within the edge band of R, the deposit at R less the
-             band, which float32 may include or not (≈ 0: the weight falls to 0 with zero slope);
-    pairs    the pairs that reach each pixel (d < R + the band): where none do, the film is 0."""
-    w, h = scene["width_px"], scene["height_px"]
+    exact    each particle's T = V · fade / (pixel area · 2⁻²⁴ mm) shared as T · w / S among the
+             pixels whose centres it reaches (d < R), S = Σ w; where it reaches none, all of T in
+             the pixel holding its centre; in float64;
+    allowed  what the reference's may differ by, summed over the particles: its T (half a unit and
+             float32's roundings), its weights (a weight unit, float32's roundings, the slope times
+             how far its float32 pixel centres lie from the exact ones, near R the band's weight)
+             and so its S, each share bounded between the extremes of T · w / S these allow, and
+             half a unit for the share's rounding; then float32's 2⁻²⁴ of the pixel's sum when it
+             is converted to mm. A particle whose weights may all round to 0 or not (S is within
+             their error of 0) may land either way: its whole T is allowed at every pixel it may
+             reach, and a centre within float32's reach of a pixel edge may fall either side;
+    reach    where any particle may put blood: elsewhere the film is exactly 0.
+
+    Also per particle: how many pixels it may share its blood among (each share's rounding, for the
+    volume), its T's error, and how many particles shared, fell back, or may have done either."""
+    w_px, h_px = scene["width_px"], scene["height_px"]
+    pixel_area = scene["width_mm"] / w_px * scene["height_mm"] / h_px
     r, band, delta = settings["splat_radius"], edge_band_mm(scene), centre_error_mm(scene)
-    pixel, d, centre = splat_pairs(settings, scene, position, age)
-    q = np.maximum(1.0 - (d / r) ** 2, 0.0)
-    deposit = np.where(d < r, np.minimum(centre * q * q, SPLAT_MAX_DEPOSIT_MM), 0.0)
-    slope = centre * 4.0 * q * d / (r * r)
-    allowed = SPLAT_UNIT_MM + SPLAT_RELATIVE * centre + slope * delta
-    band_q = max(0.0, 1.0 - ((r - band) / r) ** 2)
-    edge = np.where(np.abs(d - r) <= band, centre * band_q * band_q, 0.0)
-
-    def field(values):
-        return np.bincount(pixel, values, minlength=w * h).reshape(h, w)
-    return {"exact": field(deposit), "allowed": field(allowed), "edge": field(edge),
-            "pairs": np.bincount(pixel, minlength=w * h).reshape(h, w)}
-
-
-def disc_integral(x, y, r, cell_x, cell_y, cells=None):
-    """Σ (1 − d²/R²)² · cell area over a grid of cells [i, i + 1) · cell, sampled at their centres,
-    for a particle at (x, y), in mm²: the footprint's integral as a pixel sum takes it. With
-    cells = (nx, ny) only the cells of the panel [0, nx) × [0, ny) count. (Not from
-    footprint_mm2: the film's volume is checked against the footprint summed out here.)"""
-    i0, i1 = math.floor((x - r) / cell_x) - 1, math.ceil((x + r) / cell_x) + 1
-    j0, j1 = math.floor((y - r) / cell_y) - 1, math.ceil((y + r) / cell_y) + 1
-    if cells is not None:
-        i0, i1, j0, j1 = max(i0, 0), min(i1, cells[0]), max(j0, 0), min(j1, cells[1])
-    i, j = np.arange(i0, i1), np.arange(j0, j1)
-    d2 = ((i + 0.5) * cell_x - x)[None, :] ** 2 + ((j + 0.5) * cell_y - y)[:, None] ** 2
-    q = np.maximum(1.0 - d2 / (r * r), 0.0)
-    return float((q * q).sum()) * cell_x * cell_y
-
-
-def grid_sampling_error(r, px, py):
-    """How far one particle's film summed over the pixels (× pixel area) may be from what the
-    panel holds of its volume, as a share of the volume: (clear, cut). The footprint's whole
-    integral is a FINE× finer sum; a splat clear of the panel's edges is swept over where its
-    centre sits in its pixel, one cut by an edge or a corner over its centre's distance to them,
-    against the finer sum over the panel (whose cells share the panel's edges). The sweeps'
-    largest, with half as much again and 2e-4 to spare (between the sweep's points; the finer
-    sums' own error). Returns (clear, cut, the footprint's integral in mm²)."""
-    whole = disc_integral(0.0, 0.0, r, px / FINE, py / FINE)
-    clear = max(abs(disc_integral(a * px / 16, b * py / 16, r, px, py) / whole - 1.0)
-                for a in range(16) for b in range(16))
-    far = 1 << 40
-    at = [(r * m / 32, 4 * r + b * py / 8) for m in range(33) for b in range(8)]   # one edge
-    at += [(r * m / 16, r * n / 16) for m in range(17) for n in range(17)]         # a corner
-    cut = max(abs(disc_integral(x, y, r, px, py, (far, far)) -
-                  disc_integral(x, y, r, px / FINE, py / FINE, (far, far))) / whole for x, y in at)
-    return 1.5 * clear + 2e-4, 1.5 * cut + 2e-4, whole
-
-
-def expected_volume(settings, scene, position, age, whole):
-    """What the panel holds of the live particles' blood: Σ V · fade, each particle's taken whole
-    where its splat lies clear of the panel's edges, and where an edge cuts it, the share inside
-    (a FINE× finer sum over the panel, over `whole`, the same over the plane). Returns (volume,
-    Σ V · fade of the clear ones, of the cut ones)."""
-    w, h, width, height = scene["width_px"], scene["height_px"], scene["width_mm"], scene["height_mm"]
-    r = settings["splat_radius"]
-    fade = np.minimum(1.0, (settings["lifetime"] - age.astype(np.float64)) / settings["fade"])
-    blood = settings["volume"] * fade
     x, y = position[:, 0].astype(np.float64), position[:, 1].astype(np.float64)
-    clear = (x - r >= 0.0) & (x + r <= width) & (y - r >= 0.0) & (y + r <= height)
-    cells = (w * FINE, h * FINE)
-    share = [disc_integral(x[n], y[n], r, width / cells[0], height / cells[1], cells) / whole
-             for n in np.flatnonzero(~clear)]
-    volume = blood[clear].sum() + float(np.dot(blood[~clear], share))
-    return volume, blood[clear].sum(), blood[~clear].sum()
+    finite = np.isfinite(x) & np.isfinite(y)   # a non-finite centre is check 3's to report
+    x, y, age = x[finite], y[finite], age[finite]
+    fade = np.minimum(1.0, (settings["lifetime"] - age.astype(np.float64)) / settings["fade"])
+    blood = np.minimum(settings["volume"] * fade / (pixel_area * SPLAT_UNIT_MM), SPLAT_MAX_UNITS)
+    blood_error = 0.5 + BLOOD_RELATIVE * blood
+
+    # The weights, their sums and how far the reference's may lie from them.
+    particle, pixel, d = splat_pairs(scene, r, x, y)
+    q = np.maximum(1.0 - (d / r) ** 2, 0.0)
+    weight = np.where(d < r, q * q, 0.0)
+    band_q = max(0.0, 1.0 - ((r - band) / r) ** 2)
+    float_error = (WEIGHT_ROUNDINGS * q + WEIGHT_FLOOR + 4.0 * q * d / (r * r) * delta +
+                   np.where(np.abs(d - r) <= band, band_q * band_q, 0.0))
+    weight_error = float_error + WEIGHT_UNIT   # its whole units: half of one, a hair more below one
+    count = x.size
+    pairs = np.bincount(particle, minlength=count)
+    total = np.bincount(particle, weight, minlength=count)
+    total_error = np.bincount(particle, weight_error, minlength=count)
+    shares = total - total_error > 0.0   # the reference's S is surely at least a unit
+    surely_zero = (weight + float_error) < 0.49 * WEIGHT_UNIT   # 2²³ · w + ½ stays below 1
+    falls_back = np.bincount(particle, ~surely_zero, minlength=count) == 0
+    either = ~shares & ~falls_back
+
+    # Shares: T · w / (w + the rest of S), between the extremes its three parts' ranges allow (it
+    # grows with T and w, shrinks with the rest), and the rounding.
+    t, te, s, se = blood[particle], blood_error[particle], total[particle], total_error[particle]
+    exact = np.where(s > 0.0, t * weight / np.where(s > 0.0, s, 1.0), 0.0)
+    rest, rest_error = s - weight, se - weight_error
+    most = (t + te) * (weight + weight_error) / (weight + weight_error + np.maximum(rest - rest_error, 0.0))
+    low = np.maximum(weight - weight_error, 0.0)
+    below = low + rest + rest_error   # 0 only where low is
+    least = np.maximum(t - te, 0.0) * low / np.where(below > 0.0, below, 1.0)
+    allowed = 0.5 + np.maximum(most - exact, exact - least)
+    spread, unsure = shares[particle], either[particle]
+    allowed = np.where(spread, allowed, np.where(unsure, t + te, 0.0))
+
+    # Falling back: all of T into the pixel holding the centre; where float32 may put the centre
+    # across a pixel edge, or the particle may have shared its blood instead, all of T is allowed
+    # at each pixel that may hold it.
+    holder, candidates, crossing = holding_pixels(scene, x, y)
+    into_holder = falls_back | (either & (total == 0.0))
+    anywhere = (falls_back & crossing) | either
+    pick = anywhere[:, None] & (candidates >= 0)
+    picked, picked_blood = candidates[pick], np.broadcast_to((blood + blood_error)[:, None], pick.shape)[pick]
+
+    def field(at, values):
+        return np.bincount(at, values, minlength=w_px * h_px).astype(np.float64).reshape(h_px, w_px)
+    exact_field = (field(pixel, np.where(spread | (unsure & (s > 0.0)), exact, 0.0)) +
+                   field(holder, np.where(into_holder, blood, 0.0)))
+    allowed_field = (field(pixel, allowed) + field(holder, np.where(falls_back & ~crossing, blood_error, 0.0)) +
+                     field(picked, picked_blood))
+    allowed_field += FLOAT32_UNIT * (exact_field + allowed_field)
+    reach = (field(pixel, (allowed > 0.0).astype(float)) + field(holder, falls_back.astype(float)) +
+             field(picked, np.ones(picked.size))) > 0.0
+    return {"exact": exact_field, "allowed": allowed_field, "reach": reach,
+            "share_pixels": np.where(falls_back, 0, pairs), "blood_error": blood_error,
+            "counts": (int(shares.sum()), int(falls_back.sum()), int(either.sum()))}
 
 
 def check_particles(scenario, f, keys, problems, notes):
@@ -222,12 +242,9 @@ def check_particles(scenario, f, keys, problems, notes):
     panel = (scene["width_mm"], scene["height_mm"])
     bound_slack = float(np.spacing(np.float32(max(panel))))   # the bound is stored as a float32
     pixel_area = scene["width_mm"] / scene["width_px"] * scene["height_mm"] / scene["height_px"]
-    splat_r = settings["splat_radius"]
-    narrow = 2.0 * splat_r > min(panel)   # a splat cut by two opposite edges: outside the sweep
-    clear_error, cut_error, whole = grid_sampling_error(splat_r, scene["width_mm"] / scene["width_px"],
-                                                 scene["height_mm"] / scene["height_px"])
-    film_pixels = edge_pixels = edge_needed = 0
-    worst_share = worst_volume = 0.0
+    film_pixels = 0
+    splats = np.zeros(3, dtype=np.int64)   # shared, fell back, either
+    worst_share = worst_volume = widest_volume = 0.0
     for i, k in enumerate(keys):
         steps_done = (k + 1) * settings["substeps"]
         emitted, alive, expired, overwritten, age = replay(settings, step_of_id, steps_done)
@@ -271,49 +288,48 @@ def check_particles(scenario, f, keys, problems, notes):
             problems.append(f"key frame {k}: {outside.sum()} live particles lie outside the panel less a radius "
                             f"(slot {s} at {tuple(positions[i][s])})")
         # 4. The film, recomputed: within float32's rounding where particles reach, exactly 0 elsewhere.
-        want = expected_thickness(settings, scene, positions[i][live], slot_age[live])
-        film = films[i].astype(np.float64)
+        live_position, live_age = positions[i][live], slot_age[live]
+        want = expected_thickness(settings, scene, live_position, live_age)
+        film = films[i].astype(np.float64) / SPLAT_UNIT_MM   # in film units, exactly
         error = np.abs(film - want["exact"])
-        beyond = error > want["allowed"]
-        by_edge = beyond & (error <= want["allowed"] + want["edge"])
-        unreached = (want["pairs"] == 0) & (film != 0.0)   # the blend tests thickness > 0: no slack
-        bad = (beyond & ~by_edge) | unreached
+        beyond = ~(error <= want["allowed"])   # NaN is beyond too
+        unreached = ~want["reach"] & (film != 0.0)   # the blend tests thickness > 0: no slack
+        bad = beyond | unreached
         if bad.any():
             j, x = np.argwhere(bad)[0]
             problems.append(f"key frame {k}: the film differs from the recomputed splats on {bad.sum()} pixels "
-                            f"({unreached.sum()} of them no particle reaches; first ({x}, {j}): {film[j, x]:.9g} mm, "
-                            f"expected {want['exact'][j, x]:.9g} ± {want['allowed'][j, x] + want['edge'][j, x]:.3g})")
-        reached = want["pairs"] > 0
+                            f"({unreached.sum()} of them no particle reaches; first ({x}, {j}): "
+                            f"{film[j, x] * SPLAT_UNIT_MM:.9g} mm, expected {want['exact'][j, x] * SPLAT_UNIT_MM:.9g} "
+                            f"± {want['allowed'][j, x] * SPLAT_UNIT_MM:.3g})")
         film_pixels += int((film > 0.0).sum())
-        edge_pixels += int((want["edge"] > 0.0).sum())
-        edge_needed += int(by_edge.sum())
+        splats += want["counts"]
+        reached = want["allowed"] > 0.0
         if reached.any():
             worst_share = max(worst_share, float((error[reached] / want["allowed"][reached]).max()))
-        # 5. The film's volume: sum × pixel area against the particles' blood on the panel, to the
-        # pixel grid's sampling error (and the rounding allowed above, summed).
-        if narrow:
-            continue
-        volume, clear, cut = expected_volume(settings, scene, positions[i][live], slot_age[live], whole)
-        held = film.sum() * pixel_area
-        slack = clear_error * clear + cut_error * cut + (want["allowed"] + want["edge"]).sum() * pixel_area
-        if abs(held - volume) > slack:
-            problems.append(f"key frame {k}: the film holds {held:.6g} mm³, the live particles' blood on the "
-                            f"panel is {volume:.6g} mm³ (± {slack:.3g}; {clear:.6g} mm³ of splats clear of "
-                            f"the edges, {cut:.6g} mm³ cut by them)")
+        # 5. The film's volume, sum × pixel area, is the live particles' blood, Σ V · fade, exactly
+        # but for rounding: each particle's T (its blood_error), each share (half a unit), and each
+        # pixel's sum converted to mm (2⁻²⁴ of it).
+        fade = np.minimum(1.0, (lifetime - live_age.astype(np.float64)) / settings["fade"])
+        volume = float((settings["volume"] * fade).sum())
+        held = film.sum() * SPLAT_UNIT_MM * pixel_area
+        rounding = (0.5 * want["share_pixels"].sum() + want["blood_error"].sum() + FLOAT32_UNIT * film.sum())
+        slack = rounding * SPLAT_UNIT_MM * pixel_area
+        if not abs(held - volume) <= slack:
+            problems.append(f"key frame {k}: the film holds {held:.9g} mm³, the live particles' blood is "
+                            f"{volume:.9g} mm³ (± {slack:.3g})")
         elif volume > 0.0:
             worst_volume = max(worst_volume, abs(held - volume) / slack)
+            widest_volume = max(widest_volume, slack / volume)
     notes.append(f"{int(counts[-1][0])} emitted; film recomputed on {film_pixels} pixels, worst "
-                 f"{worst_share:.2f} of the float32 allowance, {edge_pixels} pixels by a splat edge "
-                 f"({edge_needed} needing its slack)")
-    notes.append("film volume not checked: the splat is wider than the panel" if narrow else
-                 f"film volume worst {worst_volume:.2f} of its allowance (sampling error "
-                 f"{clear_error:.2%} clear, {cut_error:.2%} at an edge)")
+                 f"{worst_share:.2f} of the float32 allowance; splats shared among the pixel centres they "
+                 f"reach {splats[0]}, whole into the pixel holding their centre {splats[1]}, either {splats[2]}")
+    notes.append(f"film volume worst {worst_volume:.2f} of its rounding allowance (at most "
+                 f"{widest_volume:.2g} of the blood)")
     return films
 
 
 # ---- the blur --------------------------------------------------------------------------------
 
-FLOAT32_UNIT = 2.0 ** -24       # float32's unit roundoff: one rounding is off by at most this, relatively
 FLOAT32_UNDERFLOW = 2.0 ** -150  # and by at most this, absolutely, where it underflows
 BLUR_MARGIN = 1.01              # the error bound below is first order in the unit: 1% for the rest
 
