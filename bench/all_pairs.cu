@@ -11,9 +11,10 @@ constexpr int kTile = 256;
 
 __global__ void all_pairs_kernel(ParticleArrays p, ParticleModel m) {
   __shared__ float4 tile[kTile];  // x, y, vx, vy
-  __shared__ bool tile_alive[kTile];
+  __shared__ std::uint32_t tile_age[kTile];
   const int i = blockIdx.x * kTile + threadIdx.x;
-  const bool mine = i < p.capacity && is_alive(m, p.age[i]);
+  const std::uint32_t age = i < p.capacity ? p.age[i] : kNeverUsed;
+  const bool mine = is_alive(m, age);
   float px = 0.0f, py = 0.0f, vx = 0.0f, vy = 0.0f;
   if (mine) {
     px = p.position[2 * i];
@@ -21,27 +22,26 @@ __global__ void all_pairs_kernel(ParticleArrays p, ParticleModel m) {
     vx = p.velocity[2 * i];
     vy = p.velocity[2 * i + 1];
   }
-  float ax = 0.0f, ay = 0.0f;
+  PairSums sums;
   for (int base = 0; base < p.capacity; base += kTile) {
     const int j = base + int(threadIdx.x);
     if (j < p.capacity) {
       tile[threadIdx.x] = make_float4(p.position[2 * j], p.position[2 * j + 1], p.velocity[2 * j],
                                       p.velocity[2 * j + 1]);
-      tile_alive[threadIdx.x] = is_alive(m, p.age[j]);
+      tile_age[threadIdx.x] = p.age[j];
     }
     __syncthreads();
     const int count = min(kTile, p.capacity - base);
     if (mine)
       for (int k = 0; k < count; ++k) {
         const float4 q = tile[k];
-        all_pairs_accumulate(m, px, py, vx, vy, std::uint32_t(i), q.x, q.y, q.z, q.w, std::uint32_t(base + k),
-                             tile_alive[k], &ax, &ay);
+        all_pairs_accumulate(m, px, py, vx, vy, age, std::uint32_t(i), q.x, q.y, q.z, q.w, tile_age[k],
+                             std::uint32_t(base + k), &sums);
       }
     __syncthreads();
   }
   if (mine) {
-    p.acceleration[2 * i] = ax;
-    p.acceleration[2 * i + 1] = ay;
+    finish_pair_sums(p, m, std::uint32_t(i), sums);
   }
 }
 

@@ -1,8 +1,8 @@
 #pragma once
 // The baseline the collision grid is measured against: every live particle tested against every
-// other (O(N²)), through the same add_contact() as the grid's collide, so only the neighbour loop
-// differs. It visits all contacts (no max_per_cell cap) in slot order, so its sums are not the
-// grid's bits; the CPU and CUDA versions sum in the same order and agree with each other.
+// other (O(N²)), through the same add_pair() as the grid's collide, so only the neighbour loop
+// differs. It visits the pairs in slot order, so its sums are not the grid's bits; the CPU and CUDA
+// versions sum in the same order and agree with each other.
 #include <cstddef>
 
 #include "core/physics/particles.h"
@@ -12,10 +12,10 @@ namespace bleedsim {
 // The contact acceleration of the particle in `slot` (written to acceleration[2·slot…]): the
 // particles in slots 0, 1, …, capacity − 1 in turn, itself and empty slots left out.
 BLEEDSIM_HD inline void all_pairs_accumulate(const ParticleModel& m, float px, float py, float vx, float vy,
-                                             std::uint32_t slot, float qx, float qy, float wx, float wy,
-                                             std::uint32_t other, bool other_alive, float* ax, float* ay) {
-  if (other == slot || !other_alive) return;
-  add_contact(m, px, py, vx, vy, slot, qx, qy, wx, wy, other, ax, ay);
+                                             std::uint32_t age, std::uint32_t slot, float qx, float qy, float wx,
+                                             float wy, std::uint32_t other_age, std::uint32_t other, PairSums* sums) {
+  if (other == slot || !is_alive(m, other_age)) return;
+  add_pair(m, px, py, vx, vy, age, slot, qx, qy, wx, wy, other_age, other, sums);
 }
 
 // Contact phase by all pairs, over host memory on `threads` threads.

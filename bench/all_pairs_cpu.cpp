@@ -10,13 +10,11 @@ void all_pairs_collide_cpu(const ParticleArrays& p, const ParticleModel& m, int 
     if (!is_alive(m, p.age[i])) return;
     const float px = p.position[2 * i], py = p.position[2 * i + 1];
     const float vx = p.velocity[2 * i], vy = p.velocity[2 * i + 1];
-    float ax = 0.0f, ay = 0.0f;
+    PairSums sums;
     for (int j = 0; j < p.capacity; ++j)
-      all_pairs_accumulate(m, px, py, vx, vy, std::uint32_t(i), p.position[2 * j], p.position[2 * j + 1],
-                           p.velocity[2 * j], p.velocity[2 * j + 1], std::uint32_t(j), is_alive(m, p.age[j]),
-                           &ax, &ay);
-    p.acceleration[2 * i] = ax;
-    p.acceleration[2 * i + 1] = ay;
+      all_pairs_accumulate(m, px, py, vx, vy, p.age[i], std::uint32_t(i), p.position[2 * j], p.position[2 * j + 1],
+                           p.velocity[2 * j], p.velocity[2 * j + 1], p.age[j], std::uint32_t(j), &sums);
+    finish_pair_sums(p, m, std::uint32_t(i), sums);
   });
 }
 

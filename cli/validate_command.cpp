@@ -1,5 +1,7 @@
 // bleedsim validate: check a scenario and say what a run of it would do.
 #include <algorithm>
+#include <cmath>
+#include <vector>
 #include <cstdio>
 #include <string>
 
@@ -7,6 +9,7 @@
 #include "core/runtime/memory.h"
 #include "core/haptics/haptics.h"
 #include "core/effects/pipeline.h"
+#include "core/effects/particle_model.h"
 #include "core/io/scenario.h"
 #include "core/haptics/trace_replay.h"
 
@@ -15,7 +18,7 @@ namespace {
 
 // The stylus: its contact parameters, and what replaying the trace over the run would do (the
 // haptic loop alone is cheap: no frame is computed).
-void describe_haptics(const Scene& scene) {
+std::int64_t describe_haptics(const Scene& scene) {
   const HapticParams& h = *scene.haptics;
   std::printf("  haptics    surface z = %g mm; k %g N/m, b %g N·s/m, cap %g N; passive: k·T/2 + |b| = %g < %g N·s/m\n",
               h.surface_z_mm, h.stiffness_N_per_m, h.damping_Ns_per_m, h.max_force_N,
@@ -38,6 +41,39 @@ void describe_haptics(const Scene& scene) {
   std::printf("  stylus     %lld ticks: in contact %lld, cutting %lld; %lld cuts; peak force %.3g N\n",
               static_cast<long long>(ticks), static_cast<long long>(contact), static_cast<long long>(cutting),
               static_cast<long long>(cuts), peak_N);
+  return cuts;
+}
+
+// The particle model as the parameters make it (docs/particles.md): the contact, the time step, the
+// largest drop the mucosa holds, and whether the ring can hold all the blood the cuts give.
+void describe_particles(const Scene& scene, std::int64_t stylus_cuts) {
+  const ParticleParams& p = *scene.particles;
+  const ParticleMechanics m = particle_mechanics(p, scene.domain, scene.frame_rate_hz);
+  std::printf("  particles  stiffness %.3g/s² (a %.3g mm pile at %.3g compression), %d sub-steps of %.3g ms "
+              "(limit %.3g ms)\n",
+              m.stiffness_per_s2, m.depth_mm, p.compression, m.substeps, m.dt_s * 1e3, m.step_limit_s * 1e3);
+  const DropLimit drop = critical_drop(p, scene.domain, scene.frame_rate_hz);
+  if (drop.holds_any)
+    std::printf("  film       %.3g mm thick; the mucosa holds any drop against gravity\n", m.film_mm);
+  else if (drop.volume_mm3 == 0)
+    std::printf("  film       %.3g mm thick; the mucosa holds no drop against gravity (no pinning)\n", m.film_mm);
+  else
+    std::printf("  film       %.3g mm thick; the mucosa holds drops up to %.3g mm³ (radius %.3g mm) against gravity\n",
+                m.film_mm, drop.volume_mm3, drop.radius_mm);
+  // The ring overwrites live blood when more can be alive at once than it has slots: a cut has at
+  // most what it bleeds in its first lifetime alive (its flow only falls).
+  std::vector<Cut> cuts = scene.cuts;
+  for (std::int64_t i = 0; i < stylus_cuts; ++i) {
+    cuts.push_back(scene.cut_at(0, 0, 0));
+    cuts.back().wound_mm = scene.haptics->cut_spacing_mm;
+  }
+  double alive = 0;
+  for (const Cut& cut : cuts) alive += std::floor(cut_blood_mm3(cut, cut.start_s + p.lifetime_s) / p.particle_volume_mm3);
+  if (alive > p.capacity)
+    std::printf("warning: the cuts can have up to %.0f particles alive at once (what each bleeds within a %.3g s "
+                "lifetime), more than the ring's %d slots: it will overwrite live blood; raise "
+                "[particles].capacity or shorten lifetime_s\n",
+                alive, p.lifetime_s, p.capacity);
 }
 
 }  // namespace
@@ -57,7 +93,8 @@ int validate_command(const std::string& scenario) {
   std::printf("  tissue     %s\n", scene.tissue_source.c_str());
   std::printf("  cuts       %zu%s\n", scene.cuts.size(), scene.trace ? " scripted, and the stylus' (below)" : "");
   std::printf("  stages     %s\n", stages.c_str());
-  if (scene.trace) describe_haptics(scene);
+  const std::int64_t stylus_cuts = scene.trace ? describe_haptics(scene) : 0;
+  if (scene.particles) describe_particles(scene, stylus_cuts);
   std::printf("  memory     %s on the backend\n", human_bytes(double(Pipeline::backend_bytes(scene))).c_str());
   std::printf("  output     %s (HDF5 %s, PNG %s)\n", out.dir.c_str(), out.hdf5 ? "on" : "off",
               out.png_every > 0 ? ("every " + std::to_string(out.png_every)).c_str() : "off");

@@ -1,5 +1,6 @@
 #include "core/effects/particle_buffers.h"
 
+#include <algorithm>
 #include <numeric>
 #include <vector>
 
@@ -8,8 +9,8 @@ namespace {
 
 // Offsets of the scratch arrays, one after another, each aligned for vector loads.
 struct ScratchLayout {
-  std::size_t acceleration, cell_key, slot_index, sorted_key, sorted_slot, sorted_position,
-      sorted_velocity, cell_start, cell_end, sort_scratch, total;
+  std::size_t acceleration, shift, on_edge, cell_key, slot_index, sorted_key, sorted_slot, sorted_position,
+      sorted_velocity, sorted_age, cell_start, cell_end, sort_scratch, total;
 
   ScratchLayout(std::size_t cells, int capacity, std::size_t sort_scratch_bytes) {
     const std::size_t n = std::size_t(capacity);
@@ -20,12 +21,15 @@ struct ScratchLayout {
       return here;
     };
     acceleration = take(2 * n * sizeof(float));
+    shift = take(2 * n * sizeof(float));
+    on_edge = take(n * sizeof(std::uint32_t));
     cell_key = take(n * sizeof(std::uint32_t));
     slot_index = take(n * sizeof(std::uint32_t));
     sorted_key = take(n * sizeof(std::uint32_t));
     sorted_slot = take(n * sizeof(std::uint32_t));
     sorted_position = take(2 * n * sizeof(float));
     sorted_velocity = take(2 * n * sizeof(float));
+    sorted_age = take(n * sizeof(std::uint32_t));
     cell_start = take(cells * sizeof(std::uint32_t));
     cell_end = take(cells * sizeof(std::uint32_t));
     sort_scratch = take(sort_scratch_bytes);
@@ -47,12 +51,15 @@ std::size_t particle_scratch_bytes(std::size_t cells, int capacity, std::size_t 
 void point_particle_scratch(ParticleArrays& a, std::size_t cells, void* base, std::size_t sort_scratch_bytes) {
   const ScratchLayout layout(cells, a.capacity, sort_scratch_bytes);
   a.acceleration = at_offset<float>(base, layout.acceleration);
+  a.shift = at_offset<float>(base, layout.shift);
+  a.on_edge = at_offset<std::uint32_t>(base, layout.on_edge);
   a.cell_key = at_offset<std::uint32_t>(base, layout.cell_key);
   a.slot_index = at_offset<std::uint32_t>(base, layout.slot_index);
   a.sorted_key = at_offset<std::uint32_t>(base, layout.sorted_key);
   a.sorted_slot = at_offset<std::uint32_t>(base, layout.sorted_slot);
   a.sorted_position = at_offset<float>(base, layout.sorted_position);
   a.sorted_velocity = at_offset<float>(base, layout.sorted_velocity);
+  a.sorted_age = at_offset<std::uint32_t>(base, layout.sorted_age);
   a.cell_start = at_offset<std::uint32_t>(base, layout.cell_start);
   a.cell_end = at_offset<std::uint32_t>(base, layout.cell_end);
   a.sort_scratch = sort_scratch_bytes ? at_offset<void>(base, layout.sort_scratch) : nullptr;
@@ -65,7 +72,10 @@ void clear_particles(Backend& backend, const ParticleArrays& a) {
   backend.upload(a.position, zeros.data(), 2 * n * sizeof(float));
   backend.upload(a.velocity, zeros.data(), 2 * n * sizeof(float));
   backend.upload(a.acceleration, zeros.data(), 2 * n * sizeof(float));
-  std::vector<std::uint32_t> words(n, kNeverUsed);
+  backend.upload(a.shift, zeros.data(), 2 * n * sizeof(float));
+  std::vector<std::uint32_t> words(n, 0u);
+  backend.upload(a.on_edge, words.data(), n * sizeof(std::uint32_t));
+  std::fill(words.begin(), words.end(), kNeverUsed);
   backend.upload(a.age, words.data(), n * sizeof(std::uint32_t));
   std::iota(words.begin(), words.end(), 0u);
   backend.upload(a.slot_index, words.data(), n * sizeof(std::uint32_t));

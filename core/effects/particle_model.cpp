@@ -6,8 +6,6 @@
 namespace bleedsim {
 namespace {
 
-double cell_edge_mm(const ParticleParams& p) { return p.cell_mm > 0.0 ? p.cell_mm : p.diameter_mm; }
-
 // As a double: a grid too large to count in integers is measured before it is refused.
 double cells_along(double panel_mm, double cell_mm) { return std::max(1.0, std::ceil(panel_mm / cell_mm)); }
 
@@ -21,14 +19,50 @@ int bits_for(std::uint32_t value) {
   return std::max(bits, 1);
 }
 
-}  // namespace
-
-double particle_steps_per_s(const Scene& scene) {
-  return scene.frame_rate_hz * double(scene.particles->substeps);
+// The deepest pile there can be: the panel's extent along gravity, or every slot of the ring heaped
+// into a quarter-disc against a corner (hexagonally packed), whichever is less. Sticky blood heaps
+// where it lands rather than levelling across the floor, and a quarter-disc is the deepest mound a
+// pile leaning on two walls makes of its area.
+double deepest_pile_mm(const ParticleParams& p, const Domain& d) {
+  const double gx = std::abs(p.gravity_x_mm_s2), gy = std::abs(p.gravity_y_mm_s2), g = std::hypot(gx, gy);
+  const double along = g > 0 ? (gx * d.width_mm + gy * d.height_mm) / g : d.height_mm;
+  const double area_mm2 = double(p.capacity) * std::sqrt(3.0) / 2.0 * p.diameter_mm * p.diameter_mm;
+  return std::min(along, 2.0 * std::sqrt(area_mm2 / M_PI));
 }
 
-double particle_lifetime_steps(const ParticleParams& p, double frame_rate_hz) {
-  return p.lifetime_s * frame_rate_hz * double(p.substeps);
+int fewest_stable_substeps(double frame_rate_hz, double limit_s) {
+  int n = std::max(1, int(std::floor(1.0 / (limit_s * frame_rate_hz))));
+  while (1.0 / (frame_rate_hz * n) >= limit_s) ++n;  // the floor can land on the limit
+  return n;
+}
+
+}  // namespace
+
+ParticleMechanics particle_mechanics(const ParticleParams& p, const Domain& domain, double frame_rate_hz) {
+  ParticleMechanics m{};
+  const double d = p.diameter_mm, v = p.particle_volume_mm3;
+  m.range_mm = d * (1.0 + p.cohesion_range);
+  m.cell_mm = p.cell_mm > 0.0 ? p.cell_mm : m.range_mm;
+  m.film_mm = v / (std::sqrt(3.0) / 2.0 * d * d);
+  m.depth_mm = p.design_depth_mm > 0.0 ? p.design_depth_mm : deepest_pile_mm(p, domain);
+  m.cohesion_mm_s2 = p.cohesion_mm3_s2 * d / v;
+  m.pinning_mm_s2 = p.pinning_mm3_s2 * d / v;
+  m.yield_mm_s2 = p.yield_mm2_s2 / m.film_mm;
+  const double g = std::hypot(p.gravity_x_mm_s2, p.gravity_y_mm_s2);
+  m.stiffness_per_s2 = (g * m.depth_mm + m.cohesion_mm_s2 * d) / (p.compression * d * d);
+  m.damping_per_s = p.damping_ratio * std::sqrt(2.0 * m.stiffness_per_s2);
+  m.step_limit_s = stable_time_step_s(m.stiffness_per_s2, m.damping_per_s, p.drag_per_s, kDesignContacts);
+  m.substeps = p.substeps > 0 ? p.substeps : fewest_stable_substeps(frame_rate_hz, m.step_limit_s);
+  m.dt_s = 1.0 / (frame_rate_hz * m.substeps);
+  return m;
+}
+
+DropLimit critical_drop(const ParticleParams& p, const Domain& domain, double frame_rate_hz) {
+  const ParticleMechanics m = particle_mechanics(p, domain, frame_rate_hz);
+  const double pull = std::hypot(p.gravity_x_mm_s2, p.gravity_y_mm_s2) - m.yield_mm_s2;
+  if (pull <= 0) return {true, 0, 0};
+  const double radius = 2.0 * p.pinning_mm3_s2 / (m.film_mm * pull);
+  return {false, radius, m.film_mm * M_PI * radius * radius};
 }
 
 double stable_time_step_s(double k, double c, double drag, int contacts) {
@@ -39,12 +73,16 @@ double stable_time_step_s(double k, double c, double drag, int contacts) {
   return (-b + std::sqrt(b * b + 16.0 * a)) / (2.0 * a);
 }
 
-double particle_step_limit_s(const ParticleParams& p) {
-  return stable_time_step_s(p.stiffness_per_s2, p.damping_per_s, p.drag_per_s, kDesignContacts);
+double particle_lifetime_steps(const ParticleParams& p, double frame_rate_hz, int substeps) {
+  return p.lifetime_s * frame_rate_hz * double(substeps);
 }
 
-double particle_grid_cells(const ParticleParams& p, double width_mm, double height_mm) {
-  return cells_along(width_mm, cell_edge_mm(p)) * cells_along(height_mm, cell_edge_mm(p));
+double particle_grid_cells(double cell_mm, double width_mm, double height_mm) {
+  return cells_along(width_mm, cell_mm) * cells_along(height_mm, cell_mm);
+}
+
+double particle_steps_per_s(const Scene& scene) {
+  return scene.frame_rate_hz * double(particle_mechanics(*scene.particles, scene.domain, scene.frame_rate_hz).substeps);
 }
 
 ParticleLifetime particle_lifetime(const Scene& scene) {
@@ -55,21 +93,31 @@ ParticleLifetime particle_lifetime(const Scene& scene) {
 }
 
 std::size_t particle_cell_count(const Scene& scene) {
-  return std::size_t(particle_grid_cells(*scene.particles, scene.domain.width_mm, scene.domain.height_mm));
+  const double cell = particle_mechanics(*scene.particles, scene.domain, scene.frame_rate_hz).cell_mm;
+  return std::size_t(particle_grid_cells(cell, scene.domain.width_mm, scene.domain.height_mm));
 }
 
 ParticleModel make_particle_model(const Scene& scene) {
   const ParticleParams& p = *scene.particles;
-  const double steps_per_s = particle_steps_per_s(scene);
-  const double dt = 1.0 / steps_per_s;
+  const ParticleMechanics mech = particle_mechanics(p, scene.domain, scene.frame_rate_hz);
+  const double dt = mech.dt_s;
   const double r = p.diameter_mm / 2.0;
-  const double cell = cell_edge_mm(p);
   ParticleModel m{};
   m.radius_mm = float(r);
   m.diameter_mm = float(p.diameter_mm);
   m.diameter_sq = m.diameter_mm * m.diameter_mm;
-  m.stiffness = float(p.stiffness_per_s2);
-  m.damping = float(p.damping_per_s);
+  m.range_mm = float(mech.range_mm);
+  m.range_sq = m.range_mm * m.range_mm;
+  m.stiffness = float(mech.stiffness_per_s2);
+  m.damping = float(mech.damping_per_s);
+  m.cohesion = float(mech.cohesion_mm_s2);
+  m.pinning = float(mech.pinning_mm_s2);
+  m.yield = float(mech.yield_mm_s2);
+  m.edge_openness = kEdgeOpenness;
+  m.edge_company = kEdgeCompany;
+  m.birth_steps = float(steps_in(p.birth_s, 1.0 / dt));
+  // New particles part at the speed a lone particle falls at: no faster than blood runs.
+  m.birth_speed = float(std::hypot(p.gravity_x_mm_s2, p.gravity_y_mm_s2) / std::max(p.drag_per_s, 1.0));
   m.gravity_x = float(p.gravity_x_mm_s2);
   m.gravity_y = float(p.gravity_y_mm_s2);
   m.dt_s = float(dt);
@@ -80,10 +128,9 @@ ParticleModel make_particle_model(const Scene& scene) {
   m.max_x = float(scene.domain.width_mm - r);
   m.min_y = float(r);
   m.max_y = float(scene.domain.height_mm - r);
-  m.cell_mm = float(cell);
-  m.cells_x = int(cells_along(scene.domain.width_mm, cell));
-  m.cells_y = int(cells_along(scene.domain.height_mm, cell));
-  m.max_per_cell = p.max_per_cell;
+  m.cell_mm = float(mech.cell_mm);
+  m.cells_x = int(cells_along(scene.domain.width_mm, mech.cell_mm));
+  m.cells_y = int(cells_along(scene.domain.height_mm, mech.cell_mm));
   m.key_bits = bits_for(std::uint32_t(m.cells_x) * std::uint32_t(m.cells_y));
   m.lifetime = particle_lifetime(scene);
   m.jitter_mm = float(p.jitter_mm);

@@ -15,20 +15,14 @@ using P = ParticleParams;
 
 std::string number(double v) { return format_significant(v, 4); }
 
-// ---- what a file leaves out or says another way -----------------------------------------------
+ParticleMechanics mechanics(const P& p, const Scene& scene) {
+  return particle_mechanics(p, scene.domain, scene.frame_rate_hz);
+}
 
-// The rate as a volume of blood: volume_mm3_per_s of particle_volume_mm3 particles. A fade not
-// given is the default's, or the whole lifetime when that is shorter.
+// ---- what a file leaves out -------------------------------------------------------------------
+
+// A fade not given is the default's, or the whole lifetime when that is shorter.
 ParamProblem resolve_file(P& p, const Written& written, const Scene&) {
-  if (written.numbers.count("volume_mm3_per_s")) {
-    if (written.has("rate_per_s")) return {"volume_mm3_per_s", "give either rate_per_s or volume_mm3_per_s, not both"};
-    // A particle's volume is the blood its splat spreads; with a volume rate it also sets the count.
-    if (!written.has("particle_volume_mm3")) return {"volume_mm3_per_s", "needs particle_volume_mm3 beside it"};
-    p.rate_per_s = written.numbers.at("volume_mm3_per_s") / p.particle_volume_mm3;
-    if (!(p.rate_per_s <= kMaxParticleRate))
-      return {"volume_mm3_per_s", "gives " + format_number(p.rate_per_s) + " particles per second; at most " +
-                                      format_number(kMaxParticleRate)};
-  }
   if (!written.has("fade_s")) p.fade_s = std::min(P{}.fade_s, p.lifetime_s);
   return {};
 }
@@ -41,22 +35,52 @@ ParamProblem fade_within_lifetime(const P& p, const Scene&) {
                         format_number(p.fade_s) + ")"};
 }
 
-ParamProblem cell_holds_a_particle(const P& p, const Scene&) {
-  if (p.cell_mm == 0 || p.cell_mm >= p.diameter_mm) return {};
-  return {"cell_mm", "must be 0 (the diameter) or at least diameter_mm, " + format_number(p.diameter_mm) +
-                         " mm (got " + format_number(p.cell_mm) + ")"};
+ParamProblem cell_holds_the_range(const P& p, const Scene& scene) {
+  const double range = mechanics(p, scene).range_mm;
+  if (p.cell_mm == 0 || p.cell_mm >= range) return {};
+  return {"cell_mm", "must be 0 (the range) or at least the range, diameter_mm × (1 + cohesion_range) = " +
+                         format_number(range) + " mm (got " + format_number(p.cell_mm) + ")"};
+}
+
+// The contact's stiffness comes from the load it must bear: gravity over the pile, or cohesion.
+ParamProblem something_to_bear(const P& p, const Scene&) {
+  if (std::hypot(p.gravity_x_mm_s2, p.gravity_y_mm_s2) > 0 || p.cohesion_mm3_s2 > 0) return {};
+  return {"gravity_mm_s2", "with no gravity and no cohesion the contact has no load to be made stiff for; "
+                           "give either"};
 }
 
 ParamProblem substep_inside_stability_limit(const P& p, const Scene& scene) {
-  const double dt = 1.0 / (scene.frame_rate_hz * p.substeps);
-  const double limit = particle_step_limit_s(p);
-  if (dt < limit) return {};
-  int needed = int(std::floor(1.0 / (limit * scene.frame_rate_hz))) + 1;
-  while (1.0 / (scene.frame_rate_hz * needed) >= limit) ++needed;  // the floor can land on the limit
-  return {"substeps", "a sub-step of " + number(dt * 1e3) + " ms is past the contact model's stability limit of " +
-                          number(limit * 1e3) + " ms (stiffness " + number(p.stiffness_per_s2) + "/s², damping " +
-                          number(p.damping_per_s) + "/s, drag " + number(p.drag_per_s) + "/s); use at least " +
-                          std::to_string(needed) + " sub-steps per frame, or a softer contact"};
+  const ParticleMechanics m = mechanics(p, scene);
+  if (m.dt_s < m.step_limit_s && m.substeps <= 100000) return {};
+  P fewest = p;
+  fewest.substeps = 0;
+  const int needed = mechanics(fewest, scene).substeps;
+  return {"substeps", "a sub-step of " + number(m.dt_s * 1e3) + " ms is past the contact's stability limit of " +
+                          number(m.step_limit_s * 1e3) + " ms (stiffness " + number(m.stiffness_per_s2) +
+                          "/s² for a " + number(m.depth_mm) + " mm pile at " + number(p.compression) +
+                          " compression, damping " + number(m.damping_per_s) + "/s, drag " + number(p.drag_per_s) +
+                          "/s); use at least " + std::to_string(needed) +
+                          " sub-steps per frame (0 takes the fewest), larger particles, or more compression"};
+}
+
+// A particle at the speed limit moves less than a radius a step, so none passes through another
+// within the step (the contact sees every overlap while it is less than a diameter).
+ParamProblem step_within_a_radius(const P& p, const Scene& scene) {
+  const double travel = p.max_speed_mm_s * mechanics(p, scene).dt_s;
+  if (travel < p.diameter_mm / 2) return {};
+  return {"max_speed_mm_s", "moves " + number(travel) + " mm a sub-step, not less than half a diameter (" +
+                                number(p.diameter_mm / 2) + " mm): a particle could pass through another; lower "
+                                "it or take more sub-steps"};
+}
+
+// A new particle's speed is at most |velocity| + √2·velocity_jitter: within the speed limit, or the
+// limit would cut its emission short and say nothing.
+ParamProblem emitted_within_the_limit(const P& p, const Scene&) {
+  const double fastest = std::hypot(p.velocity_x_mm_s, p.velocity_y_mm_s) + std::sqrt(2.0) * p.velocity_jitter_mm_s;
+  if (fastest <= p.max_speed_mm_s) return {};
+  return {"velocity_mm_s", "a new particle may leave at up to " + number(fastest) +
+                               " mm/s (|velocity_mm_s| + √2 × velocity_jitter_mm_s), past max_speed_mm_s = " +
+                               number(p.max_speed_mm_s)};
 }
 
 ParamProblem particle_fits_the_panel(const P& p, const Scene& scene) {
@@ -66,28 +90,30 @@ ParamProblem particle_fits_the_panel(const P& p, const Scene& scene) {
 }
 
 ParamProblem lifetime_countable(const P& p, const Scene& scene) {
-  const double steps = particle_lifetime_steps(p, scene.frame_rate_hz);
+  const double steps = particle_lifetime_steps(p, scene.frame_rate_hz, mechanics(p, scene).substeps);
   if (steps <= 2.0e9) return {};
   return {"lifetime_s", "a lifetime of " + number(p.lifetime_s) + " s is " + number(steps) +
                             " steps; at most 2e9 can be counted"};
 }
 
 ParamProblem grid_keyable(const P& p, const Scene& scene) {
-  const double cells = particle_grid_cells(p, scene.domain.width_mm, scene.domain.height_mm);
+  const double cells = particle_grid_cells(mechanics(p, scene).cell_mm, scene.domain.width_mm, scene.domain.height_mm);
   if (cells < 4.0e9) return {};
   return {"cell_mm", "the collision grid would have " + number(cells) + " cells; at most 4e9"};
 }
 
-// The splat sums deposits as integers of bounded size: one particle's film under its centre must fit.
-ParamProblem deposit_fits(const P& p, const Scene&) {
-  const double splat_r = p.splat_radius_mm > 0.0 ? p.splat_radius_mm : p.diameter_mm;
-  const double centre_mm = p.particle_volume_mm3 / (M_PI * splat_r * splat_r / 3.0);
+// The splat sums deposits as integers of bounded size: a particle's whole blood in one pixel (a
+// splat that reaches no pixel centre) must fit.
+ParamProblem deposit_fits(const P& p, const Scene& scene) {
+  const Domain& d = scene.domain;
+  const double pixel_mm2 = d.width_mm / d.width_px * (d.height_mm / d.height_px);
+  const double whole_mm = p.particle_volume_mm3 / pixel_mm2;
   const double most_mm = double(kMaxDepositUnits) * double(kSplatUnitMm);
-  if (centre_mm <= most_mm) return {};
-  return {"particle_volume_mm3", "a particle of " + number(p.particle_volume_mm3) + " mm³ over a splat radius of " +
-                                     number(splat_r) + " mm is " + number(centre_mm) +
-                                     " mm thick under its centre; the splat holds at most " + number(most_mm) +
-                                     " mm per particle"};
+  if (whole_mm <= most_mm) return {};
+  return {"particle_volume_mm3", "a particle of " + number(p.particle_volume_mm3) + " mm³ in one pixel of " +
+                                     number(pixel_mm2) + " mm² is " + number(whole_mm) +
+                                     " mm thick; the splat holds at most " + number(most_mm) +
+                                     " mm per particle in a pixel"};
 }
 
 }  // namespace
@@ -96,25 +122,22 @@ const ParamTable<ParticleParams>& particle_table() {
   using T = ParamType;
   static const ParamTable<P> table{
       "particles",
-      "declares the particle blood flow from the cuts, its model, and the defaults of cuts that give none",
+      "declares the particle blood flow from the cuts, its model, and the wound's defaults for cuts that give none",
       {{"capacity", T::integer, BLEEDSIM_MEMBER(P, capacity), "", {1, 268435456},
         "ring-buffer slots: the most particles alive at once; when it is full the oldest is overwritten"},
        {"diameter_mm", T::number, BLEEDSIM_MEMBER(P, diameter_mm), "mm", {0, 100, true},
         "particle size; less than the panel's width and height"},
-       {"cell_mm", T::number, BLEEDSIM_MEMBER(P, cell_mm), "mm", {0, 1e4},
-        "edge of the collision grid's cells: 0 (the diameter) or at least diameter_mm", "0: the diameter"},
-       {"max_per_cell", T::integer, BLEEDSIM_MEMBER(P, max_per_cell), "", {1, 1024},
-        "neighbours a particle visits per cell, at most"},
-       {"rate_per_s", T::number, BLEEDSIM_MEMBER(P, rate_per_s), "1/s", {0, kMaxParticleRate},
-        "particles per second from each bleeding cut (the cuts' default)"},
-       {"volume_mm3_per_s", T::number, {}, "mm³/s", {0, 1e6},
-        "the rate as a volume of blood: rate_per_s = volume_mm3_per_s / particle_volume_mm3; needs "
-        "particle_volume_mm3, not with rate_per_s",
-        "none"},
        {"particle_volume_mm3", T::number, BLEEDSIM_MEMBER(P, particle_volume_mm3), "mm³", {0, 1e6, true},
         "the blood one particle stands for: the volume its splat spreads into the film"},
+       {"cell_mm", T::number, BLEEDSIM_MEMBER(P, cell_mm), "mm", {0, 1e4},
+        "edge of the collision grid's cells: 0 (the range) or at least diameter_mm × (1 + cohesion_range)",
+        "0: the range"},
+       {"flow_mm3_per_s_per_mm", T::number, BLEEDSIM_MEMBER(P, flow_mm3_per_s_per_mm), "mm³/s/mm", {0, 1e6},
+        "blood per second per mm of wound as a cut starts (the cuts' default)"},
        {"bleed_s", T::number, BLEEDSIM_MEMBER(P, bleed_s), "s", {0, 86400},
-        "how long a cut bleeds particles after its start_s (the cuts' default)"},
+        "how long a cut bleeds after its start_s (the cuts' default)"},
+       {"clot_s", T::number, BLEEDSIM_MEMBER(P, clot_s), "s", {0, 86400},
+        "a cut's flow falls as exp(−t / clot_s) as it clots; 0: it does not (the cuts' default)"},
        {"lifetime_s", T::number, BLEEDSIM_MEMBER(P, lifetime_s), "s", {0, 86400, true}, "how long a particle lives"},
        {"fade_s", T::number, BLEEDSIM_MEMBER(P, fade_s), "s", {0, 86400, true},
         "the end of the lifetime, over which a particle fades out; at most lifetime_s",
@@ -122,15 +145,30 @@ const ParamTable<ParticleParams>& particle_table() {
        {"gravity_mm_s2", T::vector, BLEEDSIM_VECTOR(P, gravity_x_mm_s2, gravity_y_mm_s2), "mm/s²", {-1e6, 1e6},
         "acceleration along the panel; y points down"},
        {"drag_per_s", T::number, BLEEDSIM_MEMBER(P, drag_per_s), "1/s", {0, 1e6},
-        "viscous drag against the tissue: terminal speed is gravity / drag"},
-       {"stiffness_per_s2", T::number, BLEEDSIM_MEMBER(P, stiffness_per_s2), "1/s²", {0, 1e12, true},
-        "contact spring: push per mm of overlap"},
-       {"damping_per_s", T::number, BLEEDSIM_MEMBER(P, damping_per_s), "1/s", {0, 1e6},
-        "contact dashpot: resistance per mm/s of approach"},
+        "viscous drag against the tissue: a lone particle slides at gravity / drag"},
+       {"compression", T::number, BLEEDSIM_MEMBER(P, compression), "", {0, 0.5, true},
+        "the deepest pile's overlap, as a fraction of the diameter: sets the contact's stiffness"},
+       {"design_depth_mm", T::number, BLEEDSIM_MEMBER(P, design_depth_mm), "mm", {0, 1e4},
+        "the deepest pile the contact is made stiff for", "0: the panel's extent along gravity, or the ring's "
+        "whole capacity heaped into a quarter-disc in a corner, whichever is less"},
+       {"damping_ratio", T::number, BLEEDSIM_MEMBER(P, damping_ratio), "", {0, 1},
+        "the contact's dashpot, as a fraction of a pair's critical damping"},
+       {"cohesion_mm3_s2", T::number, BLEEDSIM_MEMBER(P, cohesion_mm3_s2), "mm³/s²", {0, 1e6},
+        "surface tension: the pull between neighbours, a force per unit length of the film's edge per unit "
+        "density"},
+       {"cohesion_range", T::number, BLEEDSIM_MEMBER(P, cohesion_range), "diameters", {0, 2},
+        "how far beyond contact cohesion reaches"},
+       {"pinning_mm3_s2", T::number, BLEEDSIM_MEMBER(P, pinning_mm3_s2), "mm³/s²", {0, 1e6},
+        "the mucosa's grip on the film's edge (contact-angle hysteresis), per unit length per unit density"},
+       {"yield_mm2_s2", T::number, BLEEDSIM_MEMBER(P, yield_mm2_s2), "mm²/s²", {0, 1e6},
+        "blood's yield stress per unit density: the grip on every particle"},
+       {"birth_s", T::number, BLEEDSIM_MEMBER(P, birth_s), "s", {0, 10},
+        "over this a new particle's overlaps are undone by moving it, at no more than gravity / drag, not by "
+        "pushing it: a burst parts without a blast"},
        {"max_speed_mm_s", T::number, BLEEDSIM_MEMBER(P, max_speed_mm_s), "mm/s", {0, 1e5, true},
-        "speed limit: no particle moves faster, so none passes through another"},
-       {"substeps", T::integer, BLEEDSIM_MEMBER(P, substeps), "", {1, 100000},
-        "physics steps per frame; inside the contact's stability limit"},
+        "speed limit: no particle moves faster; with the sub-step, less than half a diameter a step"},
+       {"substeps", T::integer, BLEEDSIM_MEMBER(P, substeps), "", {0, 100000},
+        "physics steps per frame, inside the contact's stability limit", "0: the fewest inside the limit"},
        {"jitter_mm", T::number, BLEEDSIM_MEMBER(P, jitter_mm), "mm", {0, 100},
         "a new particle is placed up to ± this from its cut, in x and in y"},
        {"velocity_mm_s", T::vector, BLEEDSIM_VECTOR(P, velocity_x_mm_s, velocity_y_mm_s), "mm/s", {-1e5, 1e5},
@@ -141,14 +179,18 @@ const ParamTable<ParticleParams>& particle_table() {
         "how far from its centre a particle's blood spreads in the film: 0 (the diameter) or more",
         "0: the diameter"}},
       {{"fade_s is at most lifetime_s", fade_within_lifetime},
-       {"cell_mm is 0 or at least diameter_mm", cell_holds_a_particle},
-       {"a sub-step, 1 / (frame_rate_hz · substeps), is inside the contact's stability limit "
-        "(docs/particles.md#the-stability-limit)",
-        substep_inside_stability_limit},
+       {"cell_mm is 0 or at least the range, diameter_mm × (1 + cohesion_range)", cell_holds_the_range},
+       {"gravity or cohesion is not zero: the contact's stiffness comes from the load it bears", something_to_bear},
        {"diameter_mm is less than the panel's width and height", particle_fits_the_panel},
-       {"the lifetime is at most 2e9 steps", lifetime_countable},
        {"the collision grid has fewer than 4e9 cells", grid_keyable},
-       {"one particle's film under its centre fits the splat's fixed-point sum", deposit_fits}},
+       {"a sub-step, 1 / (frame_rate_hz · substeps), is inside the contact's stability limit "
+        "(docs/particles.md#the-stability-limit), in at most 100000 sub-steps",
+        substep_inside_stability_limit},
+       {"the lifetime is at most 2e9 steps", lifetime_countable},
+       {"max_speed_mm_s × the sub-step is less than half a diameter", step_within_a_radius},
+       {"a new particle's fastest speed, |velocity_mm_s| + √2 × velocity_jitter_mm_s, is within max_speed_mm_s",
+        emitted_within_the_limit},
+       {"one particle's whole blood in a single pixel fits the splat's fixed-point sum", deposit_fits}},
       resolve_file};
   return table;
 }

@@ -14,16 +14,18 @@ constexpr std::size_t kInitialEmitters = 16;
 // CUB's radix sort needs a second copy of keys and values and a small histogram; this bounds it.
 std::size_t sort_scratch_bound(std::size_t capacity) { return 2 * capacity * 2 * sizeof(std::uint32_t) + (1u << 20); }
 
-// Particles a cut has emitted by time t: its rate over the part of [start, start + bleed] before t.
-std::uint64_t emitted_by(const Cut& cut, double t) {
-  const double bleeding = std::clamp(t - cut.start_s, 0.0, cut.bleed_s);
-  return std::uint64_t(std::floor(cut.rate_per_s * bleeding));
+// Particles a cut has emitted by time t: the blood its wound has given over the part of
+// [start, start + bleed] before t, a whole particle at a time.
+std::uint64_t emitted_by(const Cut& cut, double particle_volume_mm3, double t) {
+  return std::uint64_t(std::floor(cut_blood_mm3(cut, t) / particle_volume_mm3));
 }
 
 }  // namespace
 
 ParticleStage::ParticleStage(const StageKind& kind, const Scene& scene, State& state, Backend& backend)
-    : Stage(kind), accounting_(std::uint64_t(scene.particles->capacity), particle_lifetime(scene).steps) {
+    : Stage(kind),
+      accounting_(std::uint64_t(scene.particles->capacity), particle_lifetime(scene).steps),
+      substeps_(particle_mechanics(*scene.particles, scene.domain, scene.frame_rate_hz).substeps) {
   const int capacity = scene.particles->capacity;
   args_.model = make_particle_model(scene);
   const ParticleModel& model = args_.model;
@@ -60,10 +62,11 @@ void ParticleStage::emit(const Scene& scene, const State& state, Backend& backen
   const double steps_per_s = particle_steps_per_s(scene);
   const double t0 = double(step) / steps_per_s, t1 = double(step + 1) / steps_per_s;
   const std::uint64_t capacity = std::uint64_t(args_.arrays.capacity);
+  const double volume = scene.particles->particle_volume_mm3;
   new_.clear();
   std::uint64_t id = accounting_.counts().emitted, total = 0;
   for (const Cut& cut : state.cuts) {
-    const std::uint64_t count = emitted_by(cut, t1) - emitted_by(cut, t0);
+    const std::uint64_t count = emitted_by(cut, volume, t1) - emitted_by(cut, volume, t0);
     if (count == 0) continue;
     // first_new is set once the step's total is known (below).
     new_.push_back({float(cut.x_mm), float(cut.y_mm), id, 0u, std::uint32_t(count)});
@@ -103,7 +106,7 @@ void ParticleStage::track_live_particles() {
 }
 
 void ParticleStage::run(const Scene& scene, State& state, Backend& backend) {
-  const std::uint64_t substeps = std::uint64_t(scene.particles->substeps);
+  const std::uint64_t substeps = std::uint64_t(substeps_);
   for (std::uint64_t s = 0; s < substeps; ++s) {
     const std::uint64_t step = std::uint64_t(state.frames_done) * substeps + s;
     emit(scene, state, backend, step);

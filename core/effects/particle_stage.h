@@ -27,6 +27,7 @@ class ParticleStage final : public Stage {
   ParticleArgs args_{};
   Field* counts_ = nullptr;  // the accounting, uploaded each frame
   ParticleAccounting accounting_;
+  int substeps_;              // physics steps per frame
   Buffer scratch_;            // every array of ParticleArrays that is not a field
   Buffer emitters_;           // this step's Emitters, uploaded; grows with the cut list
   std::vector<Emitter> new_;  // host side of emitters_

@@ -57,10 +57,13 @@ HapticStep HapticLoop::tick(const DeviceSample& sample) {
     last_cut_mm_.reset();
   } else if (!last_cut_mm_ || (r.panel_mm - *last_cut_mm_).norm() >= params_.cut_spacing_mm) {
     last_cut_mm_ = r.panel_mm;
+    // Each cut stands for the stroke's wound up to the next, cut_spacing_mm of it: the stroke
+    // bleeds by its length, however finely it is cut.
     Cut cut = cut_template_;
     cut.x_mm = r.panel_mm.x();
     cut.y_mm = r.panel_mm.y();
     cut.start_s = r.t_s;
+    cut.wound_mm = params_.cut_spacing_mm;
     step.cut = cut;
   }
   ++ticks_done_;

@@ -1,12 +1,16 @@
 #pragma once
-// Particle blood flow (report §2.2.2): blood leaves a cut as particles, runs down the panel under
-// gravity, pushes its neighbours aside and piles up at the bottom, then fades and is gone.
+// Particle blood flow (report §2.2.2): blood leaves a wound as particles, each a parcel of the film
+// of blood on the mucosa. Gravity pulls it along the panel, viscous drag against the tissue slows
+// it, neighbours push back when they touch (a contact stiff enough that the deepest pile stays
+// incompressible to a stated tolerance) and pull together within a short range (surface tension),
+// and the mucosa grips it: the film's edge is pinned and all of it has a yield stress, so small
+// drops stay where they are and a pool comes to rest. It piles up at the bottom, then fades.
 //
 // One step, in the order a backend runs it (docs/particles.md has the model and its limits):
 //   emit       new particles at the bleeding cuts, into the ring buffer (oldest overwritten)
 //   bin        each live particle's grid cell; a stable sort of (cell, slot); each cell's range
-//   collide    contact acceleration from the neighbours in the 3 × 3 cells around, in fixed order
-//   integrate  gravity, contacts and drag (semi-implicit Euler), panel bounds, age
+//   collide    contact and cohesion from every neighbour in the 3 × 3 cells around, in fixed order
+//   integrate  gravity, contacts and drag (semi-implicit Euler), the mucosa's grip, panel bounds, age
 // Once per frame the splat stage (core/physics/splat.h) turns the live particles into a film of blood.
 //
 // Every update reads the old state and writes a new one (collide reads sorted copies, integrate
@@ -30,13 +34,22 @@ struct ParticleLifetime {
 };
 
 // The model's constants for one run, as the floats both backends compute with (made once on
-// the host by make_particle_model(), core/effects/particle_model.h).
+// the host by make_particle_model(), core/effects/particle_model.h, which derives them).
 struct ParticleModel {
   float radius_mm;
   float diameter_mm;
   float diameter_sq;       // diameter², the contact test
+  float range_mm;          // the farthest a neighbour acts from: contact plus cohesion
+  float range_sq;
   float stiffness;         // 1/s²: contact acceleration per mm of overlap
   float damping;           // 1/s: contact acceleration per mm/s of approach speed
+  float cohesion;          // mm/s²: a neighbour's pull within the range
+  float pinning;           // mm/s²: the grip on a particle of the film's edge
+  float yield;             // mm/s²: the grip on every particle
+  float edge_openness;     // a particle whose neighbours' directions sum to more than this is on the edge
+  float edge_company;      // ... and so is one with fewer neighbours than this (a drop of a few)
+  float birth_steps;       // a pair with a particle this new has no force: its overlap is shifted away ...
+  float birth_speed;       // mm/s: ... at no more than this
   float gravity_x;         // mm/s², along the panel (y points down)
   float gravity_y;
   float dt_s;              // one sub-step
@@ -45,10 +58,9 @@ struct ParticleModel {
   float max_speed_sq;
   float min_x, max_x;      // where a centre may be: the panel less one radius
   float min_y, max_y;
-  float cell_mm;           // grid cell edge, ≥ the diameter
+  float cell_mm;           // grid cell edge, ≥ the range
   int cells_x;
   int cells_y;
-  int max_per_cell;        // neighbours visited per cell, at most (bounds the work in a crowd)
   int key_bits;            // bits of a cell key; the sentinel `cells_x·cells_y` marks no particle
   ParticleLifetime lifetime;
   float jitter_mm;         // emission: position jitter, ± this in x and y
@@ -69,12 +81,15 @@ struct ParticleArrays {
   float* velocity;           // mm/s
   std::uint32_t* age;        // steps lived
   float* acceleration;       // contact acceleration, collide → integrate
+  float* shift;              // mm: the move that undoes overlaps with new particles, collide → integrate
+  std::uint32_t* on_edge;    // 1 where it is on the film's edge, collide → integrate
   std::uint32_t* cell_key;   // per slot
   std::uint32_t* slot_index; // 0, 1, 2, …: the values the sort carries
   std::uint32_t* sorted_key;
   std::uint32_t* sorted_slot;
   float* sorted_position;
   float* sorted_velocity;
+  std::uint32_t* sorted_age;
   std::uint32_t* cell_start;  // per cell: [start, end) in sorted order; empty cells start = end
   std::uint32_t* cell_end;
   void* sort_scratch;         // the CUDA sort's temporary storage (none on the CPU)
@@ -183,33 +198,66 @@ BLEEDSIM_HD inline void gather_sorted(const ParticleArrays& p, int i) {
   p.sorted_position[2 * i + 1] = p.position[2 * slot + 1];
   p.sorted_velocity[2 * i] = p.velocity[2 * slot];
   p.sorted_velocity[2 * i + 1] = p.velocity[2 * slot + 1];
+  p.sorted_age[i] = p.age[slot];
 }
 
 // ---- collide -----------------------------------------------------------------------------------
 
-// Particles at exactly the same point have no direction between them: push them apart along one
-// of eight directions (3-4-5 triangles, so no table and no trigonometry) chosen by the pair, with
-// opposite signs for the two, so the pair separates as any other.
+// Particles at exactly the same point have no direction between them. Each particle has a heading
+// of its own, a point of [−1, 1)² hashed from its slot, and a coincident pair is pushed apart along
+// the line between the two headings: opposite for the two (a − b = −(b − a) in floating point), and
+// for a whole cluster born at one point each particle's pairs add up to a push away from the
+// others' headings, so the cluster spreads out instead of cancelling. (Equal headings, one pair in
+// 2⁴⁸, part along x.)
 BLEEDSIM_HD inline void coincident_direction(std::uint32_t slot, std::uint32_t other, float* nx, float* ny) {
-  const std::uint32_t low = slot < other ? slot : other;
-  const std::uint32_t high = slot < other ? other : slot;
-  const std::uint32_t h = mix32(low * 0x9e3779b9U ^ mix32(high));
-  const float a = (h & 1u) ? 0.6f : 0.8f;
-  const float b = (h & 1u) ? 0.8f : 0.6f;
-  const float sign = slot < other ? 1.0f : -1.0f;
-  *nx = sign * ((h & 2u) ? -a : a);
-  *ny = sign * ((h & 4u) ? -b : b);
+  const auto heading = [](std::uint32_t s, std::uint32_t axis) { return signed_unit(mix32(mix32(s) ^ axis)); };
+  const float dx = heading(slot, 0x68e31da4U) - heading(other, 0x68e31da4U);
+  const float dy = heading(slot, 0xb5297a4dU) - heading(other, 0xb5297a4dU);
+  const float length = sqrtf(dx * dx + dy * dy);
+  if (length > 0.0f) {
+    *nx = dx / length;
+    *ny = dy / length;
+  } else {
+    *nx = slot < other ? 1.0f : -1.0f;
+    *ny = 0.0f;
+  }
 }
 
-// Linear spring-dashpot along the line of centres (per unit mass): the spring pushes the two
-// apart in proportion to their overlap, the dashpot resists their approach speed.
-BLEEDSIM_HD inline void add_contact(const ParticleModel& m, float px, float py, float vx, float vy,
-                                    std::uint32_t slot, float qx, float qy, float wx, float wy,
-                                    std::uint32_t other, float* ax, float* ay) {
+// How much of the cohesion acts at distance r: all of it up to contact, then falling smoothly to
+// nothing (with zero slope) at the range.
+BLEEDSIM_HD inline float cohesion_share(const ParticleModel& m, float r) {
+  if (r <= m.diameter_mm) return 1.0f;
+  const float q = (m.range_mm - r) / (m.range_mm - m.diameter_mm);
+  return q * q;
+}
+
+// What a particle's pairs add up to: its acceleration, the shift that undoes its overlaps with new
+// particles, and how its neighbours lie around it.
+struct PairSums {
+  float ax = 0.0f, ay = 0.0f;  // mm/s²: the full-grown pairs' forces
+  float hx = 0.0f, hy = 0.0f;  // mm: half of each overlap with a new particle, away from it
+  float sx = 0.0f, sy = 0.0f;  // the directions to the neighbours, weighted as the cohesion
+  float company = 0.0f;        // the weights
+};
+
+// The pair force on the particle at p from the one at q (per unit mass), along their line of
+// centres. Overlapping, a spring pushes them apart and a dashpot resists their approach, together
+// never pulling (a dashpot that pulled separating particles would be a tension the blood does not
+// have); within the range, cohesion pulls. The same arithmetic from either side gives equal and
+// opposite forces, bit for bit.
+// A new particle's pairs (over its first birth_steps steps) grow into their forces in two halves.
+// In the first, a pair has no force: its overlap is undone by moving both particles apart, half of
+// it each, at a limited speed (the shift, applied by integrate_particle), which gives them no
+// velocity. In the second, its force grows from nothing to whole, so the small overlaps left (a new
+// particle resting on others) are taken up slowly, under drag, not released at once. Particles born
+// on top of each other (a burst from one point) so part without being blasted apart.
+BLEEDSIM_HD inline void add_pair(const ParticleModel& m, float px, float py, float vx, float vy, std::uint32_t age,
+                                 std::uint32_t slot, float qx, float qy, float wx, float wy, std::uint32_t other_age,
+                                 std::uint32_t other, PairSums* sums) {
   const float dx = px - qx;
   const float dy = py - qy;
   const float r2 = dx * dx + dy * dy;
-  if (r2 >= m.diameter_sq) return;
+  if (r2 >= m.range_sq) return;
   float nx, ny, r;
   if (r2 > 0.0f) {
     r = sqrtf(r2);
@@ -219,14 +267,52 @@ BLEEDSIM_HD inline void add_contact(const ParticleModel& m, float px, float py, 
     r = 0.0f;
     coincident_direction(slot, other, &nx, &ny);
   }
-  const float approach = (vx - wx) * nx + (vy - wy) * ny;
-  const float push = m.stiffness * (m.diameter_mm - r) - m.damping * approach;
-  *ax += push * nx;
-  *ay += push * ny;
+  const float share = cohesion_share(m, r);
+  sums->sx += share * nx;
+  sums->sy += share * ny;
+  sums->company += share;
+  const float younger = float(age < other_age ? age : other_age), half_birth = 0.5f * m.birth_steps;
+  if (younger < half_birth) {
+    const float half_overlap = 0.5f * fmaxf(m.diameter_mm - r, 0.0f);
+    sums->hx += half_overlap * nx;
+    sums->hy += half_overlap * ny;
+    return;
+  }
+  float push = 0.0f;
+  if (r < m.diameter_mm) {
+    const float approach = (vx - wx) * nx + (vy - wy) * ny;
+    push = fmaxf(m.stiffness * (m.diameter_mm - r) - m.damping * approach, 0.0f);
+  }
+  const float grown = fminf(1.0f, (younger - half_birth) / half_birth);
+  const float force = grown * (push - m.cohesion * share);
+  sums->ax += force * nx;
+  sums->ay += force * ny;
 }
 
-// Contact acceleration of the particle at sorted position i: the 3 × 3 cells around its own, row
-// by row, each cell's particles in sorted order, at most max_per_cell of them.
+// A particle's acceleration and shift from its pair sums, the shift no longer than birth_speed·dt
+// (so a burst parts at no more than that speed), and whether it is on the film's edge: its
+// neighbours all on one side, or too few to surround it.
+BLEEDSIM_HD inline void finish_pair_sums(const ParticleArrays& p, const ParticleModel& m, std::uint32_t slot,
+                                         const PairSums& sums) {
+  float hx = sums.hx, hy = sums.hy;
+  const float most = m.birth_speed * m.dt_s, size_sq = hx * hx + hy * hy;
+  if (size_sq > most * most) {
+    const float scale = most / sqrtf(size_sq);
+    hx *= scale;
+    hy *= scale;
+  }
+  p.acceleration[2 * slot] = sums.ax;
+  p.acceleration[2 * slot + 1] = sums.ay;
+  p.shift[2 * slot] = hx;
+  p.shift[2 * slot + 1] = hy;
+  p.on_edge[slot] = sums.sx * sums.sx + sums.sy * sums.sy > m.edge_openness * m.edge_openness ||
+                    sums.company < m.edge_company;
+}
+
+// The pair forces on the particle at sorted position i from every neighbour in the 3 × 3 cells
+// around its own: row by row, each cell's particles in sorted order. No cap on a crowded cell: a
+// pair's forces are summed from both sides or from neither. Writes its acceleration and whether it
+// is on the film's edge: its neighbours all on one side, or too few to surround it.
 BLEEDSIM_HD inline void collide_particle(const ParticleArrays& p, const ParticleModel& m, int i) {
   const std::uint32_t key = p.sorted_key[i];
   if (key == sentinel_key(m)) return;
@@ -235,45 +321,54 @@ BLEEDSIM_HD inline void collide_particle(const ParticleArrays& p, const Particle
   const std::uint32_t slot = p.sorted_slot[i];
   const float px = p.sorted_position[2 * i], py = p.sorted_position[2 * i + 1];
   const float vx = p.sorted_velocity[2 * i], vy = p.sorted_velocity[2 * i + 1];
-  float ax = 0.0f, ay = 0.0f;
+  const std::uint32_t age = p.sorted_age[i];
+  PairSums sums;
   for (int ny = cy - 1; ny <= cy + 1; ++ny) {
     if (ny < 0 || ny >= m.cells_y) continue;
     for (int nx = cx - 1; nx <= cx + 1; ++nx) {
       if (nx < 0 || nx >= m.cells_x) continue;
       const std::uint32_t cell = std::uint32_t(ny) * std::uint32_t(m.cells_x) + std::uint32_t(nx);
-      const std::uint32_t start = p.cell_start[cell];
-      const std::uint32_t end = p.cell_end[cell];
-      const std::uint32_t last = end - start > std::uint32_t(m.max_per_cell) ? start + m.max_per_cell : end;
-      for (std::uint32_t j = start; j < last; ++j) {
+      for (std::uint32_t j = p.cell_start[cell]; j < p.cell_end[cell]; ++j) {
         if (j == std::uint32_t(i)) continue;
-        add_contact(m, px, py, vx, vy, slot, p.sorted_position[2 * j], p.sorted_position[2 * j + 1],
-                    p.sorted_velocity[2 * j], p.sorted_velocity[2 * j + 1], p.sorted_slot[j], &ax, &ay);
+        add_pair(m, px, py, vx, vy, age, slot, p.sorted_position[2 * j], p.sorted_position[2 * j + 1],
+                 p.sorted_velocity[2 * j], p.sorted_velocity[2 * j + 1], p.sorted_age[j], p.sorted_slot[j], &sums);
       }
     }
   }
-  p.acceleration[2 * slot] = ax;
-  p.acceleration[2 * slot + 1] = ay;
+  finish_pair_sums(p, m, slot, sums);
 }
 
 // ---- integrate ---------------------------------------------------------------------------------
 
-// Semi-implicit Euler: the new velocity from gravity and contacts, drag taken implicitly, capped
-// at the speed limit (a pair closing faster than about √(2k)·d would pass through each other, and
-// slow blood never moves that fast); the new position from the new velocity. The panel's edges
-// stop a particle and take the speed it had into them (blood does not bounce).
+// The mucosa's grip on a particle: static friction up to the yield for every particle, and up to
+// the pinning besides for one on the film's edge, where the contact line holds.
+BLEEDSIM_HD inline float grip(const ParticleModel& m, std::uint32_t on_edge) {
+  return on_edge ? m.yield + m.pinning : m.yield;
+}
+
+// Semi-implicit Euler: the new velocity from gravity and contacts, drag taken implicitly; then the
+// grip as friction taken implicitly (Coulomb): it removes up to grip·dt of the speed, and holds a
+// particle it can stop, so the film comes to rest instead of creeping; then capped at the speed
+// limit. The new position from the new velocity, and the shift away from new particles. The
+// panel's edges stop a particle and take the speed it had into them (blood does not bounce).
 BLEEDSIM_HD inline void integrate_particle(const ParticleArrays& p, const ParticleModel& m, int slot) {
   const std::uint32_t age = p.age[slot];
   if (!is_alive(m, age)) return;
   float vx = (p.velocity[2 * slot] + m.dt_s * (m.gravity_x + p.acceleration[2 * slot])) / m.drag_divisor;
   float vy = (p.velocity[2 * slot + 1] + m.dt_s * (m.gravity_y + p.acceleration[2 * slot + 1])) / m.drag_divisor;
   const float speed_sq = vx * vx + vy * vy;
-  if (speed_sq > m.max_speed_sq) {
-    const float scale = m.max_speed / sqrtf(speed_sq);
-    vx *= scale;
-    vy *= scale;
+  const float held = grip(m, p.on_edge[slot]) * m.dt_s;
+  if (speed_sq <= held * held) {
+    vx = 0.0f;
+    vy = 0.0f;
+  } else {
+    const float speed = sqrtf(speed_sq);
+    const float kept = fminf(speed - held, m.max_speed) / speed;
+    vx *= kept;
+    vy *= kept;
   }
-  float x = p.position[2 * slot] + m.dt_s * vx;
-  float y = p.position[2 * slot + 1] + m.dt_s * vy;
+  float x = p.position[2 * slot] + m.dt_s * vx + p.shift[2 * slot];
+  float y = p.position[2 * slot + 1] + m.dt_s * vy + p.shift[2 * slot + 1];
   if (x < m.min_x) { x = m.min_x; vx = fmaxf(vx, 0.0f); }
   if (x > m.max_x) { x = m.max_x; vx = fminf(vx, 0.0f); }
   if (y < m.min_y) { y = m.min_y; vy = fmaxf(vy, 0.0f); }

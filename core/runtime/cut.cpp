@@ -1,5 +1,6 @@
 #include "core/runtime/cut.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "core/runtime/message_text.h"
@@ -12,10 +13,12 @@ namespace {
 // particles would do nothing, and a file saying so is mistaken.
 ParamProblem defaults_from_scene(Cut& cut, const Written& written, const Scene& scene) {
   const Cut wound = scene.cut_at(cut.x_mm, cut.y_mm, cut.start_s);
-  for (const auto& [key, member] : {std::pair{"radius_mm", &Cut::radius_mm}, std::pair{"growth_per_s", &Cut::growth_per_s},
-                                    std::pair{"rate_per_s", &Cut::rate_per_s}, std::pair{"bleed_s", &Cut::bleed_s}})
+  for (const auto& [key, member] :
+       {std::pair{"radius_mm", &Cut::radius_mm}, std::pair{"growth_per_s", &Cut::growth_per_s},
+        std::pair{"flow_mm3_per_s_per_mm", &Cut::flow_mm3_per_s_per_mm}, std::pair{"bleed_s", &Cut::bleed_s},
+        std::pair{"clot_s", &Cut::clot_s}})
     if (!written.has(key)) cut.*member = wound.*member;
-  for (const char* key : {"rate_per_s", "bleed_s"})
+  for (const char* key : {"wound_mm", "flow_mm3_per_s_per_mm", "bleed_s", "clot_s"})
     if (written.has(key) && !scene.particles) return {key, "has no effect: this scene declares no [particles]"};
   return {};
 }
@@ -33,7 +36,23 @@ ParamProblem on_the_panel(const Cut& cut, const Scene& scene) {
   return within("y_mm", cut.y_mm, scene.domain.height_mm);
 }
 
+// At most kMaxParticleRate particles a second from one cut: a step's count stays well inside 32 bits.
+ParamProblem countable(const Cut& cut, const Scene& scene) {
+  if (!scene.particles) return {};
+  const double rate = cut.wound_mm * cut.flow_mm3_per_s_per_mm / scene.particles->particle_volume_mm3;
+  if (rate <= kMaxParticleRate) return {};
+  return {"flow_mm3_per_s_per_mm", "gives " + format_number(rate) + " particles per second (wound_mm × "
+                                   "flow_mm3_per_s_per_mm / particle_volume_mm3); at most " +
+                                   format_number(kMaxParticleRate)};
+}
+
 }  // namespace
+
+double cut_blood_mm3(const Cut& cut, double t_s) {
+  const double bleeding_s = std::clamp(t_s - cut.start_s, 0.0, cut.bleed_s);
+  const double flowing_s = cut.clot_s > 0.0 ? cut.clot_s * -std::expm1(-bleeding_s / cut.clot_s) : bleeding_s;
+  return cut.wound_mm * cut.flow_mm3_per_s_per_mm * flowing_s;
+}
 
 const ParamTable<Cut>& cut_table() {
   using T = ParamType;
@@ -52,11 +71,18 @@ const ParamTable<Cut>& cut_table() {
         "the stain's radius", "[spread].radius_mm"},
        {"growth_per_s", T::number, BLEEDSIM_MEMBER(P, growth_per_s), "1/s", param_named(size, "growth_per_s").range,
         "the stain's growth", "[spread].growth_per_s"},
-       {"rate_per_s", T::number, BLEEDSIM_MEMBER(P, rate_per_s), "1/s", param_named(flow, "rate_per_s").range,
-        "particles per second while it bleeds; only with [particles]", "[particles].rate_per_s"},
+       {"wound_mm", T::number, BLEEDSIM_MEMBER(P, wound_mm), "mm", {0, 1e4},
+        "the length of wound it stands for: it bleeds in proportion; only with [particles]"},
+       {"flow_mm3_per_s_per_mm", T::number, BLEEDSIM_MEMBER(P, flow_mm3_per_s_per_mm), "mm³/s/mm",
+        param_named(flow, "flow_mm3_per_s_per_mm").range, "blood per second per mm of wound, as it starts",
+        "[particles].flow_mm3_per_s_per_mm"},
        {"bleed_s", T::number, BLEEDSIM_MEMBER(P, bleed_s), "s", param_named(flow, "bleed_s").range,
-        "how long it bleeds particles; only with [particles]", "[particles].bleed_s"}},
-      {{"the cut lies on the panel: 0 ≤ x_mm ≤ width_mm, 0 ≤ y_mm ≤ height_mm", on_the_panel}},
+        "how long it bleeds", "[particles].bleed_s"},
+       {"clot_s", T::number, BLEEDSIM_MEMBER(P, clot_s), "s", param_named(flow, "clot_s").range,
+        "the flow falls as exp(−t / clot_s) after the cut; 0: it does not", "[particles].clot_s"}},
+      {{"the cut lies on the panel: 0 ≤ x_mm ≤ width_mm, 0 ≤ y_mm ≤ height_mm", on_the_panel},
+       {"with [particles], wound_mm × flow_mm3_per_s_per_mm / particle_volume_mm3 is at most 1e8 particles a second",
+        countable}},
       defaults_from_scene};
   return table;
 }

@@ -1,7 +1,10 @@
 #pragma once
-// A cut made by the tool: where and when, how large a wound (the spread stain's radius and growth
-// rate) and how hard it bleeds particles (rate, for how long). What a scenario's [[cut]] leaves
-// out comes from the scene's [spread] and [particles] defaults (Scene::cut_at).
+// A cut made by the tool: where and when, how large a stain it leaves (the spread's radius and
+// growth rate), and how it bleeds particles: the mm of wound it stands for, the blood per second
+// per mm of wound, for how long, and how fast the flow clots. A stroke's cuts share its wound: the
+// haptic loop's cuts each stand for the path between them, so the flow follows the wound's length,
+// not how finely it is cut. What a scenario's [[cut]] leaves out comes from the scene's [spread]
+// and [particles] defaults (Scene::cut_at).
 #include "core/runtime/params.h"
 
 namespace bleedsim {
@@ -12,9 +15,15 @@ struct Cut {
   double start_s = 0.0;
   double radius_mm = 0.0;
   double growth_per_s = 0.0;
-  double rate_per_s = 0.0;  // particles per second while it bleeds
-  double bleed_s = 0.0;     // how long it bleeds particles
+  double wound_mm = 1.0;              // the length of wound it stands for
+  double flow_mm3_per_s_per_mm = 0.0;  // blood per second per mm of wound, as it starts
+  double bleed_s = 0.0;               // how long it bleeds
+  double clot_s = 0.0;                // the flow falls as exp(−t/clot_s); 0: it does not
 };
+
+// The blood a cut's wound has given by time t (mm³): flow × wound over the part of
+// [start, start + bleed] before t, falling as exp(−s/clot_s) when it clots.
+double cut_blood_mm3(const Cut& cut, double t_s);
 
 // The [[cut]] tables; a cut's key in messages is "cut[i]".
 const ParamTable<Cut>& cut_table();

@@ -61,7 +61,8 @@ double Scene::frame_time_s(std::int64_t k) const {
 Cut Scene::cut_at(double x_mm, double y_mm, double start_s) const {
   const SpreadParams size = spread.value_or(SpreadParams{});
   const ParticleParams flow = particles.value_or(ParticleParams{});
-  return Cut{x_mm, y_mm, start_s, size.radius_mm, size.growth_per_s, flow.rate_per_s, flow.bleed_s};
+  return Cut{x_mm, y_mm, start_s, size.radius_mm, size.growth_per_s, 1.0, flow.flow_mm3_per_s_per_mm, flow.bleed_s,
+             flow.clot_s};
 }
 
 std::int64_t Scene::haptic_ticks_through_frame(std::int64_t k) const {

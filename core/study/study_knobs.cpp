@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "core/study/study.h"
+#include "core/effects/particle_model.h"
 #include "core/io/scenario.h"
 #include "core/io/tissue_png.h"
 #include "core/runtime/tissue.h"
@@ -25,29 +26,21 @@ std::vector<double> whole_multiples(double base, std::initializer_list<double> f
   return values;
 }
 
-// Fewer sub-steps than the contact's stability allows soften the contact to keep the scene's margin:
-// k·dt² and c·dt stay as they were (drag only helps). More sub-steps refine the time step alone.
-void set_substeps(Scene& s, double value) {
-  ParticleParams& p = *s.particles;
-  const double ratio = value / p.substeps;
-  if (ratio < 1) {
-    p.stiffness_per_s2 *= ratio * ratio;
-    p.damping_per_s *= ratio;
-  }
-  p.substeps = int(value);
+// The scene's sub-steps: its own, or the fewest its contact allows (substeps = 0).
+double resolved_substeps(const Scene& s) {
+  return double(particle_mechanics(*s.particles, s.domain, s.frame_rate_hz).substeps);
 }
 
-// Particles f times the diameter carry f² the blood each, f⁻² as many for the same volume a second:
-// the film, the pile's area and the blood's volume stay; only how finely it is sampled changes.
+// Particles f times the diameter carry f² the blood each, f⁻² as many for the same flow of blood:
+// the film, the pile's area and the blood's volume stay; only how finely it is sampled changes
+// (the contact's stiffness and the sub-steps follow, as the model derives them).
 void set_particle_size(Scene& s, double f) {
   ParticleParams& p = *s.particles;
   p.diameter_mm *= f;
   if (p.cell_mm > 0) p.cell_mm *= f;
   if (p.splat_radius_mm > 0) p.splat_radius_mm *= f;
   p.particle_volume_mm3 *= f * f;
-  p.rate_per_s /= f * f;
   p.capacity = int(std::min(double(1 << 28), std::ceil(p.capacity / (f * f))));
-  for (Cut& cut : s.cuts) cut.rate_per_s /= f * f;
 }
 
 // The blur's taps and width in downsampled pixels, scaled so its width on the panel stays.
@@ -75,26 +68,21 @@ void set_blur_downsample(Scene& s, double d) {
 
 const std::vector<Knob>& knobs() {
   static const std::vector<Knob> table = {
-      {"stiffness",
-       "the contact spring between particles (per mm of overlap): softer lets blood compress and "
-       "overlap; at the same sub-steps it saves no time, but it is what lets fewer sub-steps stay stable",
-       true, "particles.stiffness_per_s2", has_particles, [](const Scene& s) { return s.particles->stiffness_per_s2; },
+      {"compression",
+       "the deepest pile's overlap as a fraction of the diameter, which sets the contact's stiffness: "
+       "more lets blood compress, and needs fewer sub-steps",
+       false, "particles.compression", has_particles, [](const Scene& s) { return s.particles->compression; },
        [](const Scene& s) {
-         const double k = s.particles->stiffness_per_s2;
-         return std::vector<double>{k / 16, k / 4, k};
+         const double e = s.particles->compression;
+         return std::vector<double>{e / 2, e, 2 * e, 4 * e};
        },
-       [](Scene& s, double k) { s.particles->stiffness_per_s2 = k; }},
+       [](Scene& s, double e) { s.particles->compression = e; }},
       {"substeps",
-       "physics steps per frame (the time step): fewer cost less; below the contact's stability "
-       "limit the contact is softened to stay stable, so blood compresses more",
-       true, "particles.substeps", has_particles, [](const Scene& s) { return double(s.particles->substeps); },
-       [](const Scene& s) { return whole_multiples(s.particles->substeps, {0.25, 0.5, 1, 2}); }, set_substeps},
-      {"max_per_cell",
-       "neighbours visited per grid cell in a collision: fewer cost less, and let crowded blood "
-       "pass through itself",
-       true, "particles.max_per_cell", has_particles, [](const Scene& s) { return double(s.particles->max_per_cell); },
-       [](const Scene& s) { return whole_multiples(s.particles->max_per_cell, {0.25, 0.5, 1, 2}); },
-       [](Scene& s, double v) { s.particles->max_per_cell = int(v); }},
+       "physics steps per frame (the time step), from the fewest the contact allows up: more cost more "
+       "and refine the time step alone",
+       true, "particles.substeps", has_particles, resolved_substeps,
+       [](const Scene& s) { return whole_multiples(resolved_substeps(s), {1, 2, 4}); },
+       [](Scene& s, double v) { s.particles->substeps = int(v); }},
       {"particle_size",
        "the particles' diameter, as a factor (the blood's volume kept): larger particles are fewer "
        "and cheaper, but sample the flow and the film more coarsely",

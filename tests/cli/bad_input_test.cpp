@@ -103,18 +103,16 @@ TEST_F(BadInput, TissueFileThatIsNotAPng) {
 }
 
 TEST_F(BadInput, ParticleSubStepPastTheStabilityLimit) {
-  // The default contact (k = 4e5, c = γ = 100) is stable while 3.2e6·dt² + 1400·dt < 4, up to
-  // (−1400 + √(1400² + 16·3.2e6)) / 6.4e6 = (−1400 + 7291.09) / 6.4e6 = 0.9205 ms a sub-step.
-  // 10 sub-steps at 30 Hz are 3.333 ms, and staying inside needs more than
-  // 1/(30 Hz · 0.92048 ms) = 36.2: 37 (1/1110 s = 0.9009 ms; 36 would be 1/1080 s = 0.9259 ms).
+  // 10 sub-steps at 30 Hz are 3.333 ms, far past the default contact's limit on this 16 × 12 mm
+  // panel (tests/io/scenario_effects_test.cpp derives it: 0.1491 ms, 224 sub-steps at least).
   expect_refused(scenario_with("", "[particles]\nsubsteps = 10\n"),
-                 {"bad.toml:12:12: particles.substeps: a sub-step of 3.333 ms is past the contact model's stability "
-                  "limit of 0.9205 ms", "use at least 37 sub-steps per frame"});
+                 {"bad.toml:12:12: particles.substeps: a sub-step of 3.333 ms is past the contact's stability "
+                  "limit of 0.1491 ms", "use at least 224 sub-steps per frame"});
 }
 
 TEST_F(BadInput, CutParticleRateInASceneWithoutParticles) {
-  expect_refused(scenario_with("y_mm = 6.0\n", "y_mm = 6.0\nrate_per_s = 200\n"),
-                 {"bad.toml:11:14: cut[0].rate_per_s: has no effect: this scene declares no [particles]"});
+  expect_refused(scenario_with("y_mm = 6.0\n", "y_mm = 6.0\nflow_mm3_per_s_per_mm = 2\n"),
+                 {"bad.toml:11:25: cut[0].flow_mm3_per_s_per_mm: has no effect: this scene declares no [particles]"});
 }
 
 TEST_F(BadInput, UnwritableOutputPathFromTheCommandLine) {

@@ -19,7 +19,7 @@ TEST(RunHaptics, WritesTheHapticChannelAndReportsTheBudgets) {
   const std::string trace = source_dir() + "/scenarios/traces/single-stroke.csv";
   write_text(folder / "stroke.toml",
              "[scene]\nwidth_px = 64\nheight_px = 48\nwidth_mm = 32.0\nheight_mm = 24.0\nduration_s = 4.2\n"
-             "[spread]\nradius_mm = 2.0\n[particles]\ncapacity = 4096\nrate_per_s = 50.0\nbleed_s = 1.0\n"
+             "[spread]\nradius_mm = 2.0\n[particles]\ncapacity = 4096\nflow_mm3_per_s_per_mm = 0.2\nbleed_s = 1.0\n"
              "[haptics]\ntrace = \"" + trace + "\"\ncut_spacing_mm = 1.5\n"
              "[output]\ndir = \"" + (folder / "out").string() + "\"\n");
   const CliResult result = run_cli("run '" + (folder / "stroke.toml").string() + "' --backend cpu");

@@ -85,8 +85,9 @@ TEST(Run, TheSameSceneTwiceGivesByteIdenticalFiles) {
 }
 
 TEST(Run, ThreadCountsGiveTheSameHashes) {
-  const CliResult one = run_cli("hash '" + scenario("default.toml") + "' --backend cpu --threads 1");
-  const CliResult seven = run_cli("hash '" + scenario("default.toml") + "' --backend cpu --threads 7");
+  // A short golden scene with particles and the spread: --threads reaches both.
+  const CliResult one = run_cli("hash '" + scenario("golden/particles-spread-wrap.toml") + "' --backend cpu --threads 1");
+  const CliResult seven = run_cli("hash '" + scenario("golden/particles-spread-wrap.toml") + "' --backend cpu --threads 7");
   ASSERT_EQ(one.exit_code, 0) << one.output;
   ASSERT_EQ(seven.exit_code, 0) << seven.output;
   const auto hashes = [](const std::string& output) { return output.substr(output.find('\n') + 1); };

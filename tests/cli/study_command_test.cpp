@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "core/effects/particle_model.h"
+#include "core/io/scenario.h"
 #include "tests/cli/cli_harness.h"
 
 namespace bleedsim::test {
@@ -18,7 +20,7 @@ namespace fs = std::filesystem;
 fs::path tiny_scene(const fs::path& folder) {
   write_text(folder / "tiny.toml",
              "[scene]\nname = \"tiny\"\nwidth_px = 32\nheight_px = 24\nwidth_mm = 8.0\nheight_mm = 6.0\n"
-             "duration_s = 0.2\n[spread]\nradius_mm = 2.0\n[particles]\ncapacity = 1024\nrate_per_s = 800.0\n"
+             "duration_s = 0.2\n[spread]\nradius_mm = 2.0\n[particles]\ncapacity = 1024\nflow_mm3_per_s_per_mm = 3.2\n"
              "[blur]\n[[cut]]\nx_mm = 4.0\ny_mm = 2.0\n");
   return folder / "tiny.toml";
 }
@@ -33,19 +35,22 @@ std::vector<std::string> lines_of(const std::string& text) {
 TEST(StudyCommand, WritesTheTableTheDetailsAndThePlots) {
   const fs::path folder = scratch_folder();
   const fs::path out = folder / "study";
-  const CliResult result = run_cli("study '" + tiny_scene(folder).string() +
-                                   "' --knob substeps=20,40 --knob resolution=0.5,1 --backend cpu --out '" +
+  // The scene's own sub-steps: the fewest its contact allows; the study tries twice as many too.
+  const Scene scene = load_scenario(tiny_scene(folder).string()).scene;
+  const int fewest = particle_mechanics(*scene.particles, scene.domain, scene.frame_rate_hz).substeps;
+  const CliResult result = run_cli("study '" + tiny_scene(folder).string() + "' --knob substeps=" +
+                                   std::to_string(2 * fewest) + " --knob resolution=0.5,1 --backend cpu --out '" +
                                    out.string() + "'");
   ASSERT_EQ(result.exit_code, 0) << result.output;
-  EXPECT_NE(result.output.find("tiny: 6 settings on 1 backend(s), 6 frames each; reference: substeps 40, resolution 1; "
-                               "compared on 16 x 12 cells"),
+  EXPECT_NE(result.output.find("tiny: 6 settings on 1 backend(s), 6 frames each; reference: substeps " +
+                               std::to_string(2 * fewest) + ", resolution 1; compared on 16 x 12 cells"),
             std::string::npos)
       << result.output;
   const std::vector<std::string> csv = lines_of(read_bytes(out / "study.csv"));
   ASSERT_EQ(csv.size(), 7u) << read_bytes(out / "study.csv");  // header, reference, check, 2 + 2 settings
   EXPECT_EQ(csv[0].rfind("scene,knob,value,role,backend,status,frames,ms_per_frame_p50", 0), 0u);
   EXPECT_EQ(csv[1].rfind("tiny,reference,0,reference,cpu,ok,6,", 0), 0u) << csv[1];
-  EXPECT_EQ(csv[3].rfind("tiny,substeps,20,sweep,cpu,ok,6,", 0), 0u) << csv[3];
+  EXPECT_EQ(csv[3].rfind("tiny,substeps," + std::to_string(fewest) + ",base,cpu,ok,6,", 0), 0u) << csv[3];
   EXPECT_EQ(csv[6].rfind("tiny,resolution,1,base,cpu,ok,6,", 0), 0u) << csv[6];
   EXPECT_TRUE(fs::exists(out / "study.h5"));
   // The plots, where Debian's matplotlib is (scripts/setup installs it).
@@ -62,7 +67,7 @@ TEST(StudyCommand, BadKnobsExitTwoAndWriteNothing) {
   const struct {
     const char* knob;
     const char* message;
-  } cases[] = {{"substep=1,2", "--knob: no knob 'substep' (known: stiffness, substeps, max_per_cell,"},
+  } cases[] = {{"substep=1,2", "--knob: no knob 'substep' (known: compression, substeps, particle_size,"},
                {"substeps", "--knob: write it as substeps=v1,v2,... (got 'substeps')"},
                {"substeps=20,x", "--knob substeps: expected numbers separated by commas, got 'x'"},
                {"blur_downsample=3", "--knob blur_downsample: values of blur.downsample must be 1, 2 or 4 (got 3)"}};

@@ -5,9 +5,16 @@
 //     leaves through a wall or falls through the floor;
 //   * the accounting exact: emitted = alive + expired + overwritten, and alive = the number of
 //     slots whose age is below the lifetime, counted from the age field;
-//   * the overlap bounded: the deepest d − |xi − xj| over live pairs, found with the test's own
-//     grid (measure_crowding: every particle of a cell, no max_per_cell), below the case's bound,
-//     and once the particles have landed below a bound from the pile's own weight;
+//   * the overlap bounded: the deepest d − |xi − xj| over live pairs past their birth, found with
+//     the test's own grid (measure_crowding), below half a diameter (no pair passes through
+//     another), and once the particles have landed below a tenth of a diameter: the contact is made
+//     stiff enough for the deepest pile's bottom contacts to overlap ⅔·compression on average, and
+//     a settled pile's contact forces are spread exponentially, P(f) ∝ exp(−1.5·f/⟨f⟩) (Mueth,
+//     Jaeger & Nagel 1998), so the strongest of n contacts carries about ln(n)/1.5 times the mean:
+//     with the default 2 % compression, 1.33 % × ln(10⁵)/1.5 = 10 % for a full-depth pile of 10⁵
+//     contacts (big-pile, with 3·10⁵, takes 1.5 %);
+//   * where the case is a burst of births on top of each other, no particle faster than twice the
+//     speed a lone particle reaches, g/drag: the burst eases apart rather than blasting apart;
 // and over the run that the kinetic energy decays once emission stops.
 //
 // ParticleHardCases.BigPile is labelled "slow" (tests/CMakeLists.txt): 10⁵ particles take about
@@ -187,47 +194,20 @@ std::string frame_problem(const ParticleModel& m, const Particles& p) {
   return "";
 }
 
-// The hexagonal-pile estimate of the deepest overlap under `rows` rows: a particle rests on two
-// below at ±30° from the vertical, so at the bottom each of those contacts carries rows·g/√3 per
-// unit mass, and the spring k takes it with an overlap of rows·g/(√3·k) ≈ 0.58·rows·g/k. (Frictionless
-// discs press like a liquid: the same force on every contact at that depth, horizontal ones too.)
-double hex_pile_overlap_mm(const ParticleModel& m, double rows) {
-  return rows * std::hypot(m.gravity_x, m.gravity_y) / (std::sqrt(3.0) * m.stiffness);
-}
-
-// The overlap of a head-on impact at `speed`: the pair's relative motion is a spring of 2k (per unit
-// mass), which stops it within speed/√(2k), less whatever the dashpot takes.
-double impact_overlap_mm(const ParticleModel& m, double speed) { return speed / std::sqrt(2.0 * m.stiffness); }
-
-// Rows in the tallest column of live particles: from the floor to the highest centre, at the
-// hexagonal row spacing √3/2·d. Gravity points along +y in every hard scene.
-double tallest_rows(const ParticleModel& m, const Particles& p) {
-  float top = m.max_y;
-  for (int s = 0; s < p.slots(); ++s)
-    if (is_alive(m, p.age[s])) top = std::min(top, p.position[2 * s + 1]);
-  return (double(m.max_y) - top) / (0.5 * std::sqrt(3.0) * m.diameter_mm) + 1.0;
-}
-
-// How much more the strongest contacts of a disordered pile carry than the hexagonal estimate:
-// random packings carry their load along chains, and contact forces have an exponential tail, so
-// the largest of thousands of contacts at one depth is several times their mean. Measured at rest:
-// 2.7 to 3.3x in big-pile (10⁵ particles; the figure moves with any detail of the rain), 1.6 to
-// 2.3x in the small hard cases. At rest the deepest overlap must stay below this many times the
-// estimate for the tallest column: frictionless discs press roughly like a liquid, so the largest
-// pressure anywhere is about the one at the foot of the tallest column.
-constexpr double kDisorder = 5.0;
+// No pair passes through another: its overlap stays below half a diameter, past the new particle's
+// birth (until then its forces are weak by design, and coincident births overlap fully).
+constexpr double kPassThrough = 0.5;
+// At rest: a tenth of a diameter (the header says where the models' compression comes from).
+constexpr double kAtRest = 0.10;
 
 // What a case expects beyond the per-frame invariants.
-// Every case also gets, in the last quarter of the frames after emission stops (when everything
-// has landed), the bound kDisorder × hex_pile_overlap_mm(tallest_rows) on the deepest overlap.
 struct Expect {
-  // Every frame: the deepest overlap between particles at least one frame old.
-  double overlap_bound_mm = 0.0;
+  // A burst: no particle faster than twice g/drag.
+  bool burst = false;
+  // The deepest overlap at rest, in diameters.
+  double at_rest = kAtRest;
   // The kinetic energy at the last frame below this fraction of the energy when emission stopped.
-  // The small heaps are still spreading along the floor at the end, like a viscous liquid, their
-  // energy falling slowly rather than exponentially: 0.003 to 0.009 measured, 2 to 4 s after the
-  // last cut stops.
-  double end_energy_ratio = 0.05;
+  double end_energy_ratio = 0.01;
   // Most live particles in one of the library's cells at the last frame; 0: unchecked.
   int max_per_cell_at_end = 0;
 };
@@ -239,10 +219,8 @@ struct RunSummary {
   ParticleCounts final_counts;
   double max_overlap_mm = 0.0;       // any frame
   std::int64_t max_overlap_frame = -1;
-  double rest_overlap_mm = 0.0;      // the deepest in the last quarter after emission stopped ...
-  double rest_bound_mm = 0.0;        // ... and its bound at that frame
-  double rest_rows = 0.0;            // the tallest column then
-  double rest_ratio = 0.0;           // the largest overlap / hexagonal estimate in that quarter
+  double rest_overlap_mm = 0.0;      // the deepest in the last quarter after emission stopped
+  double max_speed = 0.0;            // mm/s, any frame
   double energy_at_stop = 0.0;       // the first frame at or after the last cut stops bleeding
   double energy_at_end = 0.0;
   double first_quarter_max = 0.0;    // max KE over the first and last quarters of the frames
@@ -255,7 +233,7 @@ struct RunSummary {
 double emission_end_s(const Scene& scene) {
   double end = 0.0;
   for (const Cut& cut : scene.cuts)
-    if (cut.rate_per_s > 0.0) end = std::max(end, cut.start_s + cut.bleed_s);
+    if (cut.wound_mm * cut.flow_mm3_per_s_per_mm > 0.0) end = std::max(end, cut.start_s + cut.bleed_s);
   return end;
 }
 
@@ -268,22 +246,21 @@ std::string describe(const std::string& name, const Scene& scene, const Particle
   std::snprintf(text, sizeof text,
                 "[hard/%s] %llu particles emitted, at most %llu alive; %llu steps (%lld frames), dt %.4g ms = %.3f of the "
                 "limit %.4g ms\n"
-                "  max overlap %.1f%% of d (frame %lld; bound %.1f%%); at rest %.1f%% (bound %.1f%% = %.0f x the hex "
-                "estimate for %.1f rows; largest ratio to the estimate %.2f)\n"
+                "  max overlap %.1f%% of d (frame %lld; bound %.0f%%); at rest %.1f%% (bound %.0f%%)\n"
                 "  KE at emission stop %.4g, at end %.4g (ratio %.3g, bound %.3g); max KE first/last quarter after stop "
                 "%.4g / %.4g\n"
-                "  end: emitted %llu = alive %llu + expired %llu + overwritten %llu; max per cell %d (max_per_cell %d); "
+                "  end: emitted %llu = alive %llu + expired %llu + overwritten %llu; max per cell %d; fastest %.3g mm/s; "
                 "%.2f s",
                 name.c_str(), (unsigned long long)c.emitted, (unsigned long long)r.max_alive,
                 (unsigned long long)r.steps, (long long)r.frames, m.dt_s * 1e3,
-                m.dt_s / particle_step_limit_s(pp),
-                1e3 * particle_step_limit_s(pp),
-                100.0 * r.max_overlap_mm / d, (long long)r.max_overlap_frame, 100.0 * e.overlap_bound_mm / d,
-                100.0 * r.rest_overlap_mm / d, 100.0 * r.rest_bound_mm / d, kDisorder, r.rest_rows, r.rest_ratio,
+                m.dt_s / particle_mechanics(pp, scene.domain, scene.frame_rate_hz).step_limit_s,
+                1e3 * particle_mechanics(pp, scene.domain, scene.frame_rate_hz).step_limit_s,
+                100.0 * r.max_overlap_mm / d, (long long)r.max_overlap_frame, 100.0 * kPassThrough,
+                100.0 * r.rest_overlap_mm / d, 100.0 * e.at_rest,
                 r.energy_at_stop, r.energy_at_end, r.energy_at_end / r.energy_at_stop, e.end_energy_ratio,
                 r.first_quarter_max, r.last_quarter_max, (unsigned long long)c.emitted, (unsigned long long)c.alive,
                 (unsigned long long)c.expired, (unsigned long long)c.overwritten, r.max_per_cell_at_end,
-                m.max_per_cell, r.seconds);
+                r.max_speed, r.seconds);
   return text;
 }
 
@@ -295,7 +272,9 @@ void run_and_check(const std::string& name, Scene scene, const Expect& expect, R
   const auto began = std::chrono::steady_clock::now();
   const ParticleModel m = make_particle_model(scene);
   const double stop_s = emission_end_s(scene);
-  const std::uint32_t settled_age = std::uint32_t(scene.particles->substeps);  // one frame
+  const ParticleMechanics mech = particle_mechanics(*scene.particles, scene.domain, scene.frame_rate_hz);
+  const std::uint32_t settled_age = std::uint32_t(m.birth_steps) + std::uint32_t(mech.substeps);  // born, and a frame
+  const double terminal_speed = std::hypot(m.gravity_x, m.gravity_y) / scene.particles->drag_per_s;
   const std::int64_t frames = scene.frame_count();
   const double frame_rate = scene.frame_rate_hz;
   // The frames from the one emission stops in: the last quarter of them is "at rest".
@@ -314,19 +293,20 @@ void run_and_check(const std::string& name, Scene scene, const Expect& expect, R
     ASSERT_EQ(problem, "") << name << ", frame " << k << " (t = " << sim.time_s() << " s)";
     const Crowding crowd = measure_crowding(m, p, settled_age);
     if (crowd.max_overlap_mm > r.max_overlap_mm) r.max_overlap_mm = crowd.max_overlap_mm, r.max_overlap_frame = k;
-    ASSERT_LT(crowd.max_overlap_mm, expect.overlap_bound_mm)
+    ASSERT_LT(crowd.max_overlap_mm, kPassThrough * m.diameter_mm)
         << name << ", frame " << k << " (t = " << sim.time_s() << " s): overlap of "
         << crowd.max_overlap_mm / m.diameter_mm << " diameters";
     if (k >= rest_from) {
-      const double rows = tallest_rows(m, p);
-      const double estimate = hex_pile_overlap_mm(m, rows);
-      if (crowd.max_overlap_mm / estimate > r.rest_ratio) r.rest_ratio = crowd.max_overlap_mm / estimate;
-      if (crowd.max_overlap_mm >= r.rest_overlap_mm)
-        r.rest_overlap_mm = crowd.max_overlap_mm, r.rest_bound_mm = kDisorder * estimate, r.rest_rows = rows;
-      ASSERT_LT(crowd.max_overlap_mm, kDisorder * estimate)
+      r.rest_overlap_mm = std::max(r.rest_overlap_mm, crowd.max_overlap_mm);
+      ASSERT_LT(crowd.max_overlap_mm, expect.at_rest * m.diameter_mm)
           << name << ", frame " << k << " (t = " << sim.time_s() << " s), at rest: overlap of "
-          << crowd.max_overlap_mm / m.diameter_mm << " diameters under " << rows << " rows";
+          << crowd.max_overlap_mm / m.diameter_mm << " diameters";
     }
+    for (int s = 0; s < p.slots(); ++s)
+      if (is_alive(m, p.age[s]))
+        r.max_speed = std::max(r.max_speed, std::hypot(double(p.velocity[2 * s]), double(p.velocity[2 * s + 1])));
+    if (expect.burst)
+      ASSERT_LT(r.max_speed, 2.0 * terminal_speed) << name << ", frame " << k << " (t = " << sim.time_s() << " s)";
     if (each_frame) each_frame(p);
     r.max_alive = std::max(r.max_alive, p.counts.alive);
     const double ke = kinetic_energy(m, p);
@@ -337,7 +317,7 @@ void run_and_check(const std::string& name, Scene scene, const Expect& expect, R
     }
   }
   r.frames = frames;
-  r.steps = std::uint64_t(frames) * std::uint64_t(copy.particles->substeps);
+  r.steps = std::uint64_t(frames) * std::uint64_t(mech.substeps);
 
   // The energy after emission stops: nothing feeds the particles but gravity, while drag and the
   // dashpots take energy out, so a stable run settles into a resting pile (or its particles
@@ -353,9 +333,11 @@ void run_and_check(const std::string& name, Scene scene, const Expect& expect, R
   *out = r;
   std::cout << describe(name, copy, m, r, expect) << std::endl;
 
-  EXPECT_GT(r.energy_at_stop, 0.0) << name << ": nothing moving when emission stopped; the decay means nothing";
-  EXPECT_LT(r.energy_at_end, expect.end_energy_ratio * r.energy_at_stop) << name;
-  EXPECT_LT(r.last_quarter_max, r.first_quarter_max) << name;
+  // Against the most there was once emission stopped (a burst still lies still when its cut stops).
+  const double reference = std::max(r.energy_at_stop, r.first_quarter_max);
+  EXPECT_GT(reference, 0.0) << name << ": nothing moving after emission stopped; the decay means nothing";
+  EXPECT_LE(r.energy_at_end, expect.end_energy_ratio * reference) << name;
+  EXPECT_LE(r.last_quarter_max, r.first_quarter_max) << name;
   if (expect.max_per_cell_at_end > 0) {
     EXPECT_LE(r.max_per_cell_at_end, expect.max_per_cell_at_end) << name;
   }
@@ -364,39 +346,36 @@ void run_and_check(const std::string& name, Scene scene, const Expect& expect, R
 Scene load_hard(const std::string& name) { return load_scenario(hard_scenario(name)).scene; }
 
 // ---- the cases ---------------------------------------------------------------------------------
-// Each case's every-frame overlap bound is for pairs at least one frame old. Where new particles
-// are born on top of others (same-point, ring-wrap, crowded-cells, corner-cut) no bound below a
-// diameter follows from the physics: a pair born coincident releases ½·k·d² as it separates,
-// enough (undamped) to drive one of them a full diameter into a third. The dashpot and the sharing
-// among neighbours keep that far lower in practice, and the bound is the measured worst with a
-// margin: a particle pushed that far through another means the contacts lost the crowd.
 
+// The emission per step of a cut, in particles.
+double per_step(const Scene& scene, const Cut& cut) {
+  return cut.wound_mm * cut.flow_mm3_per_s_per_mm / scene.particles->particle_volume_mm3 / particle_steps_per_s(scene);
+}
+
+// A burst of coincident births: they ease apart (soft births) instead of blasting apart, under
+// twice the terminal speed (checked every frame by run_and_check).
 TEST(ParticleHardCases, SamePoint) {
   Scene scene = load_hard("same-point");
   const ParticleParams& p = *scene.particles;
   ASSERT_EQ(p.jitter_mm, 0.0);
   ASSERT_EQ(p.velocity_jitter_mm_s, 0.0);
   ASSERT_EQ(scene.cuts.size(), 1u);
-  // More than one particle per step: the ones born in the same step are exactly coincident.
-  ASSERT_GT(scene.cuts[0].rate_per_s / particle_steps_per_s(scene), 1.0);
-  const ParticleModel m = make_particle_model(scene);
+  // Several particles per step: the ones born in the same step are exactly coincident.
+  ASSERT_GT(per_step(scene, scene.cuts[0]), 1.0);
   Expect expect;
-  expect.overlap_bound_mm = 0.6 * m.diameter_mm;  // measured 39%
+  expect.burst = true;
   RunSummary r;
   run_and_check("same-point", std::move(scene), expect, &r);
   if (HasFatalFailure()) return;
-  EXPECT_EQ(r.final_counts.emitted, 3000u);
-  EXPECT_EQ(r.final_counts.alive, 3000u);
+  EXPECT_EQ(r.final_counts.emitted, 1200u);  // 100 mm³/s over 1 mm of wound for 48 ms, in 0.004 mm³
+  EXPECT_EQ(r.final_counts.alive, 1200u);
 }
 
 TEST(ParticleHardCases, RingWrap) {
   Scene scene = load_hard("ring-wrap");
-  const ParticleModel m = make_particle_model(scene);
   const std::uint64_t capacity = std::uint64_t(scene.particles->capacity);
-  Expect expect;
-  expect.overlap_bound_mm = 0.6 * m.diameter_mm;  // measured 35%
   RunSummary r;
-  run_and_check("ring-wrap", std::move(scene), expect, &r);
+  run_and_check("ring-wrap", std::move(scene), Expect{}, &r);
   if (HasFatalFailure()) return;
   const ParticleCounts& c = r.final_counts;
   EXPECT_EQ(c.emitted, 6200u);            // 1200/s for 5 s and 100/s for 2 s
@@ -409,18 +388,8 @@ TEST(ParticleHardCases, RingWrap) {
 
 TEST(ParticleHardCases, BigPile) {
   Scene scene = load_hard("big-pile");
-  const ParticleModel m = make_particle_model(scene);
-  const ParticleParams& p = *scene.particles;
-  const double width_in_diameters = scene.domain.width_mm / p.diameter_mm;
-  const double rows = 100000.0 / width_in_diameters;  // a flat pile of hexagonal rows
-  // Every frame: the strongest contacts at the bottom of the settled pile (kDisorder × the
-  // hexagonal estimate, 38% of d), plus a landing at the terminal speed g/drag at which the
-  // particles are emitted (21%). Measured: 32%, while the rain lands.
   Expect expect;
-  const double terminal_speed = std::hypot(p.gravity_x_mm_s2, p.gravity_y_mm_s2) / p.drag_per_s;
-  expect.overlap_bound_mm = kDisorder * hex_pile_overlap_mm(m, rows) + impact_overlap_mm(m, terminal_speed);
-  // 10 s after the rain stops the pile is at rest: drag alone takes a free particle's energy down
-  // by e^(−2·1.2·10) ≈ 4e-11; measured 1e-6 (slow rearrangements of the pile).
+  // 10 s after the rain stops the pile is at rest: the grip holds what drag has slowed.
   expect.end_energy_ratio = 1e-4;
   expect.max_per_cell_at_end = 4;
   RunSummary r;
@@ -429,35 +398,31 @@ TEST(ParticleHardCases, BigPile) {
   EXPECT_EQ(r.final_counts.alive, 100000u);
 }
 
+// The fewest sub-steps the contact allows (substeps = 0) run stably to rest; one fewer is refused.
 TEST(ParticleHardCases, StabilityEdge) {
   Scene scene = load_hard("stability-edge");
   const ParticleParams& p = *scene.particles;
-  const double limit = particle_step_limit_s(p);
-  const double dt = 1.0 / particle_steps_per_s(scene);
-  ASSERT_LT(dt, limit);
-  ASSERT_GE(dt, 0.9 * limit) << "the scene is no longer at the edge";
-  ASSERT_GE(1.0 / (scene.frame_rate_hz * (p.substeps - 1)), limit) << "one sub-step fewer must cross the limit";
-  const ParticleModel m = make_particle_model(scene);
-  Expect expect;
-  expect.overlap_bound_mm = 0.5 * m.diameter_mm;  // measured 32%; a gentle pour, not a crowd
+  ASSERT_EQ(p.substeps, 0) << "the scene should take the fewest sub-steps";
+  const ParticleMechanics mech = particle_mechanics(p, scene.domain, scene.frame_rate_hz);
+  ASSERT_LT(mech.dt_s, mech.step_limit_s);
+  ASSERT_GE(1.0 / (scene.frame_rate_hz * (mech.substeps - 1)), mech.step_limit_s);
   RunSummary r;
-  run_and_check("stability-edge", std::move(scene), expect, &r);
+  run_and_check("stability-edge", std::move(scene), Expect{}, &r);
 }
 
 TEST(ParticleHardCases, StabilityEdgeOneSubStepFewerIsRefused) {
+  Scene scene = load_hard("stability-edge");
+  const int fewest = particle_mechanics(*scene.particles, scene.domain, scene.frame_rate_hz).substeps;
   const std::string text = read_text(hard_scenario("stability-edge"));
-  const std::regex line(R"((^|\n)substeps = (\d+))");
-  std::smatch match;
-  ASSERT_TRUE(std::regex_search(text, match, line)) << "no 'substeps = N' line";
-  const int substeps = std::stoi(match[2].str());
-  const std::string fewer = match.prefix().str() + match[1].str() + "substeps = " + std::to_string(substeps - 1) +
-                            match.suffix().str();
+  const std::string fewer =
+      std::regex_replace(text, std::regex(R"((\n)\[particles\]\n)"), "$1[particles]\nsubsteps = " + std::to_string(fewest - 1) + "\n");
+  ASSERT_NE(fewer, text);
   const fs::path file =
       fs::temp_directory_path() / ("bleedsim-stability-edge-" + std::to_string(::getpid()) + ".toml");
   std::ofstream(file, std::ios::binary) << fewer;
   try {
     load_scenario(file.string());
-    ADD_FAILURE() << "loaded a scene with " << substeps - 1 << " sub-steps, past the stability limit";
+    ADD_FAILURE() << "loaded a scene with " << fewest - 1 << " sub-steps, past the stability limit";
   } catch (const InputError& e) {
     EXPECT_EQ(e.key(), "particles.substeps") << e.what();
   }
@@ -472,11 +437,6 @@ TEST(ParticleHardCases, CornerCut) {
   EXPECT_EQ(scene.cuts[1].x_mm, scene.domain.width_mm);
   EXPECT_EQ(scene.cuts[1].y_mm, 0.0);
   const ParticleModel m = make_particle_model(scene);
-  Expect expect;
-  // Measured 80%, in the chain that clamped emission packs onto the floor line beside the
-  // bottom-left cut (scenarios/hard/corner-cut.toml): this bound only says that no pair passes
-  // through another.
-  expect.overlap_bound_mm = 0.95 * m.diameter_mm;
   // The clamp did its part: particles sat exactly on the bottom-left corner point, and on the
   // right wall's line.
   int most_in_corner = 0, most_on_right_wall = 0;
@@ -490,6 +450,9 @@ TEST(ParticleHardCases, CornerCut) {
     most_in_corner = std::max(most_in_corner, in_corner);
     most_on_right_wall = std::max(most_on_right_wall, on_right_wall);
   };
+  // The corner's pile is the deepest mound the ring's particles make (a quarter-disc against two
+  // walls), which is what the contact is made stiff for: the flat floor's bound holds here too.
+  Expect expect;
   RunSummary r;
   run_and_check("corner-cut", std::move(scene), expect, &r, count_clamped);
   if (HasFatalFailure()) return;
@@ -505,20 +468,54 @@ TEST(ParticleHardCases, CrowdedCells) {
   const ParticleModel m = make_particle_model(scene);
   ASSERT_EQ(scene.cuts.size(), 1u);
   const Cut& cut = scene.cuts[0];
-  // Every step puts more new particles than max_per_cell into one cell.
-  ASSERT_GT(cut.rate_per_s / particle_steps_per_s(scene), double(m.max_per_cell) + 1.0);
+  // Every step puts several new particles into one cell, on top of the crowd already there.
+  ASSERT_GT(per_step(scene, cut), 5.0);
   const auto cell = [&](double v) { return std::floor(v / m.cell_mm); };
   ASSERT_EQ(cell(cut.x_mm - m.jitter_mm), cell(cut.x_mm + m.jitter_mm));
   ASSERT_EQ(cell(cut.y_mm - m.jitter_mm), cell(cut.y_mm + m.jitter_mm));
+  // Spread out at the end: a resting hexagonal pile averages under two particles per cell of the
+  // range (1.3 d) across, and five in one such cell need two of them overlapping deeply.
   Expect expect;
-  expect.overlap_bound_mm = 0.75 * m.diameter_mm;  // measured 58%, while the crowd blows apart
-  // Spread out at the end: a resting hexagonal pile averages 1.15 particles per d × d cell, and
-  // five in one cell need two of them overlapping by more than 29% of d (five points in a unit
-  // square have two within 1/√2), which only the pile's deepest contacts reach. 4 is half of
-  // what collide reads from a cell.
+  expect.burst = true;
   expect.max_per_cell_at_end = 4;
   RunSummary r;
   run_and_check("crowded-cells", std::move(scene), expect, &r);
+}
+
+// ---- the default panel comes to rest ------------------------------------------------------------
+
+// The issue's bound: 95 % of the particles below 0.1 mm/s within 3 s of the last emission, on the
+// default scenario's panel (the scene run on to that time). The grip holds what drag has slowed
+// (docs/particles.md, "Coming to rest"): a particle on the mucosa stops once its share of the
+// weight is under the yield, and a pool's edge is pinned. Whether one late drop is still creeping
+// when the clock stops is chaos (it depends on where each particle's rounding put it), so the
+// bound is on the ensemble: the particles of four seeds pooled, and each seed's share reported.
+TEST(ParticleRest, TheDefaultPanelStopsWithinThreeSecondsOfTheLastEmission) {
+  const Scene base = load_scenario((fs::path(test::source_dir()) / "scenarios" / "default.toml").string()).scene;
+  double last_emission = 0.0;
+  for (const Cut& cut : base.cuts) last_emission = std::max(last_emission, cut.start_s + cut.bleed_s);
+  constexpr double kWithin = 3.0, kSlow = 0.1, kShare = 0.95;
+  long pooled_alive = 0, pooled_still = 0;
+  for (const std::uint64_t seed : {1, 2, 3, 4}) {
+    Scene scene = base;
+    scene.seed = seed;
+    scene.duration_s = last_emission + kWithin;
+    const ParticleModel m = make_particle_model(scene);
+    Simulation sim(scene, kCpu);
+    while (sim.frames_done() < scene.frame_count()) sim.step();
+    const Particles p(sim);
+    int alive = 0, still = 0;
+    for (int s = 0; s < p.slots(); ++s) {
+      if (!is_alive(m, p.age[s])) continue;
+      ++alive;
+      still += std::hypot(p.velocity[2 * s], p.velocity[2 * s + 1]) < kSlow;
+    }
+    std::cout << "seed " << seed << ": " << 100.0 * still / std::max(alive, 1) << " % of " << alive << " below "
+              << kSlow << " mm/s " << kWithin << " s after the last emission at " << last_emission << " s" << std::endl;
+    pooled_alive += alive;
+    pooled_still += still;
+  }
+  EXPECT_GE(double(pooled_still) / double(pooled_alive), kShare);
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 // The particle model's parts, each against something that does not share its code: the accounting
-// against a slot-by-slot replay of the ring buffer, contacts against Newton's third law, the
-// stability limit against a pile run just inside and just outside it.
+// against a slot-by-slot replay of the ring buffer, pair forces against Newton's third law and
+// their formulas, the stability limit against a pile run just inside and just outside it.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -13,6 +13,7 @@
 #include "core/effects/particle_buffers.h"
 #include "core/effects/particle_model.h"
 #include "core/physics/particles.h"
+#include "tests/effects/particle_box.h"
 
 namespace bleedsim {
 namespace {
@@ -91,10 +92,11 @@ TEST(ParticleModel, ItsPartsAreTheWholeModels) {
   scene.particles->cell_mm = 0.45;
   scene.particles->lifetime_s = 2.0;
   scene.particles->fade_s = 0.3;
+  scene.particles->substeps = 400;
   const ParticleModel m = make_particle_model(scene);
   EXPECT_EQ(particle_lifetime(scene).steps, m.lifetime.steps);
   EXPECT_EQ(particle_lifetime(scene).fade_steps, m.lifetime.fade_steps);
-  EXPECT_EQ(m.lifetime.steps, 2400u);  // 2 s at 30 Hz × 40 sub-steps
+  EXPECT_EQ(m.lifetime.steps, 24000u);  // 2 s at 30 Hz × 400 sub-steps
   EXPECT_EQ(particle_cell_count(scene), std::size_t(cell_count(m)));
   EXPECT_EQ(cell_count(m), 106u * 71u);  // ⌈47.3 / 0.45⌉ × ⌈31.9 / 0.45⌉
 }
@@ -123,53 +125,106 @@ TEST(CounterHash, DependsOnEveryCounterAndIsEvenlySpread) {
   EXPECT_GT(high, 0.999);
 }
 
-// ---- contacts ----------------------------------------------------------------------------------
+// ---- pair forces -------------------------------------------------------------------------------
 
-ParticleModel contact_model() {
-  ParticleModel m{};
-  m.diameter_mm = 0.2f;
-  m.radius_mm = 0.1f;
-  m.diameter_sq = 0.04f;
-  m.stiffness = 4.0e5f;
-  m.damping = 100.0f;
-  return m;
+// The default contact, with cohesion, for a scene of any panel.
+ParticleModel pair_model() {
+  Scene scene = test::box_scene(16, 12);
+  return make_particle_model(scene);
 }
 
-struct Push {
-  float x = 0.0f, y = 0.0f;
+struct Pull {
+  float x = 0.0f, y = 0.0f, company = 0.0f;
 };
 
-Push push_on(const ParticleModel& m, float px, float py, float vx, float vy, std::uint32_t slot, float qx, float qy,
-             float wx, float wy, std::uint32_t other) {
-  Push a;
-  add_contact(m, px, py, vx, vy, slot, qx, qy, wx, wy, other, &a.x, &a.y);
-  return a;
+// The force on a particle at (px, py) moving at (vx, vy) from one at (qx, qy) moving at (wx, wy).
+Pull force_on(const ParticleModel& m, float px, float py, float vx, float vy, std::uint32_t slot, float qx, float qy,
+              float wx, float wy, std::uint32_t other, std::uint32_t age = 1000000, std::uint32_t other_age = 1000000) {
+  PairSums sums;
+  add_pair(m, px, py, vx, vy, age, slot, qx, qy, wx, wy, other_age, other, &sums);
+  return {sums.ax, sums.ay, sums.company};
 }
 
-TEST(ParticleContact, PushesAreEqualAndOppositeAndZeroOutOfReach) {
-  const ParticleModel m = contact_model();
-  const Push on_a = push_on(m, 1.00f, 2.00f, 3.0f, -1.0f, 4, 1.12f, 2.09f, -2.0f, 0.5f, 9);
-  const Push on_b = push_on(m, 1.12f, 2.09f, -2.0f, 0.5f, 9, 1.00f, 2.00f, 3.0f, -1.0f, 4);
-  EXPECT_GT(std::hypot(on_a.x, on_a.y), 0.0f);
-  EXPECT_FLOAT_EQ(on_a.x, -on_b.x);
-  EXPECT_FLOAT_EQ(on_a.y, -on_b.y);
-  // Overlap 0.2 − 0.15 = 0.05 mm along +x, approaching at 5 mm/s: k·0.05 + c·5 pushes a to −x.
-  const Push head_on = push_on(m, 1.0f, 1.0f, 5.0f, 0.0f, 0, 1.15f, 1.0f, 0.0f, 0.0f, 1);
-  EXPECT_NEAR(head_on.x, -(4.0e5 * 0.05 + 100.0 * 5.0), 0.5);
-  EXPECT_FLOAT_EQ(head_on.y, 0.0f);
-  const Push apart = push_on(m, 1.0f, 1.0f, 0.0f, 0.0f, 0, 1.2001f, 1.0f, 0.0f, 0.0f, 1);
+TEST(ParticlePair, ForcesAreEqualAndOppositeToTheBit) {
+  const ParticleModel m = pair_model();
+  // Overlapping, approaching and sliding; then within cohesion's reach only.
+  for (const float gap : {0.13f, 0.19f, 0.21f, 0.25f}) {
+    const Pull on_a = force_on(m, 1.00f, 2.00f, 3.0f, -1.0f, 4, 1.00f + gap * 0.8f, 2.00f + gap * 0.6f, -2.0f, 0.5f, 9);
+    const Pull on_b = force_on(m, 1.00f + gap * 0.8f, 2.00f + gap * 0.6f, -2.0f, 0.5f, 9, 1.00f, 2.00f, 3.0f, -1.0f, 4);
+    EXPECT_GT(std::hypot(on_a.x, on_a.y), 0.0f) << gap;
+    EXPECT_EQ(on_a.x, -on_b.x) << gap;
+    EXPECT_EQ(on_a.y, -on_b.y) << gap;
+  }
+}
+
+TEST(ParticlePair, SpringAndDashpotPushCohesionPullsAndNothingBeyondTheRange) {
+  const ParticleModel m = pair_model();
+  // Overlap 0.2 − 0.15 = 0.05 mm along +x, approaching at 5 mm/s: k·0.05 + c·5 pushes a towards −x,
+  // and cohesion (full, in contact) pulls it back towards +x.
+  const Pull head_on = force_on(m, 1.0f, 1.0f, 5.0f, 0.0f, 0, 1.15f, 1.0f, 0.0f, 0.0f, 1);
+  const double expected = -(double(m.stiffness) * 0.05 + double(m.damping) * 5.0 - double(m.cohesion));
+  EXPECT_NEAR(head_on.x, expected, 1e-5 * std::abs(expected));
+  EXPECT_EQ(head_on.y, 0.0f);
+  // Touching lightly while separating fast: the dashpot would pull; it may not. Only cohesion pulls.
+  const Pull parting = force_on(m, 1.0f, 1.0f, -50.0f, 0.0f, 0, 1.1999f, 1.0f, 0.0f, 0.0f, 1);
+  EXPECT_FLOAT_EQ(parting.x, m.cohesion);
+  // Halfway between contact and the range, cohesion is a quarter of its full pull.
+  const float halfway = (m.diameter_mm + m.range_mm) / 2;
+  EXPECT_NEAR(force_on(m, 1.0f, 1.0f, 0.0f, 0.0f, 0, 1.0f + halfway, 1.0f, 0.0f, 0.0f, 1).x, 0.25f * m.cohesion,
+              1e-5 * m.cohesion);  // the distance, and so the share, are float32
+  // Beyond the range: nothing, and not a neighbour.
+  const Pull apart = force_on(m, 1.0f, 1.0f, 0.0f, 0.0f, 0, 1.0f + m.range_mm * 1.0001f, 1.0f, 0.0f, 0.0f, 1);
   EXPECT_EQ(apart.x, 0.0f);
-  EXPECT_EQ(apart.y, 0.0f);
+  EXPECT_EQ(apart.company, 0.0f);
 }
 
-TEST(ParticleContact, CoincidentParticlesArePushedApartOppositely) {
-  const ParticleModel m = contact_model();
+TEST(ParticlePair, ANewParticlesOverlapsAreShiftedAwayNotPushed) {
+  const ParticleModel m = pair_model();
+  ASSERT_GT(m.birth_steps, 10.0f);
+  // Overlapping by 0.1 mm along x: a full-grown pair pushes; one with a new particle does not, and
+  // is shifted apart by half the overlap each instead.
+  PairSums grown, newborn;
+  add_pair(m, 1.0f, 1.0f, 0.0f, 0.0f, 1000000, 0, 1.1f, 1.0f, 0.0f, 0.0f, 1000000, 1, &grown);
+  add_pair(m, 1.0f, 1.0f, 0.0f, 0.0f, 3, 0, 1.1f, 1.0f, 0.0f, 0.0f, 1000000, 1, &newborn);
+  EXPECT_LT(grown.ax, 0.0f);
+  EXPECT_EQ(grown.hx, 0.0f);
+  EXPECT_EQ(newborn.ax, 0.0f);
+  EXPECT_NEAR(newborn.hx, -0.05f, 1e-6f);
+  EXPECT_EQ(newborn.company, grown.company);  // a neighbour all the same
+  // In the second half of its birth, the force grows from nothing to whole.
+  const std::uint32_t three_quarters = std::uint32_t(0.75f * m.birth_steps);
+  PairSums growing;
+  add_pair(m, 1.0f, 1.0f, 0.0f, 0.0f, three_quarters, 0, 1.1f, 1.0f, 0.0f, 0.0f, 1000000, 1, &growing);
+  EXPECT_EQ(growing.hx, 0.0f);
+  EXPECT_NEAR(growing.ax, grown.ax * (float(three_quarters) - 0.5f * m.birth_steps) / (0.5f * m.birth_steps),
+              1e-5f * std::abs(grown.ax));
+}
+
+TEST(ParticlePair, CoincidentParticlesArePushedApartOppositely) {
+  const ParticleModel m = pair_model();
   for (std::uint32_t other = 1; other < 50; ++other) {
-    const Push on_a = push_on(m, 3.0f, 3.0f, 0.0f, 0.0f, 0, 3.0f, 3.0f, 0.0f, 0.0f, other);
-    const Push on_b = push_on(m, 3.0f, 3.0f, 0.0f, 0.0f, other, 3.0f, 3.0f, 0.0f, 0.0f, 0);
-    EXPECT_NEAR(std::hypot(on_a.x, on_a.y), 4.0e5 * 0.2, 1.0) << other;  // full overlap, unit direction
+    const Pull on_a = force_on(m, 3.0f, 3.0f, 0.0f, 0.0f, 0, 3.0f, 3.0f, 0.0f, 0.0f, other);
+    const Pull on_b = force_on(m, 3.0f, 3.0f, 0.0f, 0.0f, other, 3.0f, 3.0f, 0.0f, 0.0f, 0);
+    EXPECT_NEAR(std::hypot(on_a.x, on_a.y), m.stiffness * m.diameter_mm - m.cohesion, 1e-5 * m.stiffness) << other;
     EXPECT_EQ(on_a.x, -on_b.x) << other;
     EXPECT_EQ(on_a.y, -on_b.y) << other;
+  }
+}
+
+// A cluster born at one point: each new particle's shift, the sum of half its overlaps along its
+// pairs' directions, points away from the others: none is left where the cluster was born. (With
+// one hashed direction per pair, a particle's directions could cancel and leave it coincident.)
+TEST(ParticlePair, ACoincidentClusterSpreadsOut) {
+  const ParticleModel m = pair_model();
+  for (const std::uint32_t size : {2u, 3u, 8u, 64u}) {
+    for (std::uint32_t i = 0; i < size; ++i) {
+      PairSums sums;
+      for (std::uint32_t j = 0; j < size; ++j)
+        if (j != i) add_pair(m, 3.0f, 3.0f, 0.0f, 0.0f, 0, i, 3.0f, 3.0f, 0.0f, 0.0f, 0, j, &sums);
+      // Each pair gives d/2 along a unit direction; the pairs do not cancel to less than one
+      // pair's worth, so the particle moves at the birth shift's full rate.
+      EXPECT_GT(std::hypot(sums.hx, sums.hy), 0.5 * m.diameter_mm) << size << " " << i;
+    }
   }
 }
 
@@ -184,73 +239,48 @@ TEST(ParticleStability, TheLimitSolvesTheFastestModesCondition) {
   EXPECT_LT(stable_time_step_s(1.0e6, 0.0, 0.0, 8), stable_time_step_s(1.0e6, 0.0, 0.0, 6));
   const double k = 4.0e5, c = 100.0, drag = 100.0, dt = stable_time_step_s(k, c, drag, 6);
   EXPECT_NEAR(6 * k * dt * dt + (12 * c - 2 * drag) * dt, 4.0, 1e-9);
-  // The enforced limit keeps a margin for eight contacts: the defaults' 40 sub-steps at 30 Hz fit.
-  const ParticleParams defaults;
-  EXPECT_NEAR(particle_step_limit_s(defaults), stable_time_step_s(k, c, drag, kDesignContacts), 1e-15);
-  EXPECT_LT(1.0 / (30.0 * defaults.substeps), particle_step_limit_s(defaults));
+  // The defaults' fewest sub-steps are inside the enforced limit, and one fewer is not.
+  const Scene scene = test::box_scene(32, 24);
+  const ParticleMechanics mech = particle_mechanics(*scene.particles, scene.domain, 30.0);
+  EXPECT_NEAR(mech.step_limit_s, stable_time_step_s(mech.stiffness_per_s2, mech.damping_per_s,
+                                                   scene.particles->drag_per_s, kDesignContacts), 1e-15);
+  EXPECT_LT(mech.dt_s, mech.step_limit_s);
+  EXPECT_GE(1.0 / (30.0 * (mech.substeps - 1)), mech.step_limit_s);
 }
 
-// A hexagonal pile resting on the floor of a narrow panel, run for `steps` at `dt_fraction` of the
-// six-contact stability limit with the default contact and gravity, on the CPU reference. Returns the largest speed seen
-// over the last tenth of the run (mm/s), or infinity once anything is not finite.
-double largest_late_speed(double dt_fraction, int steps) {
-  Scene scene;
-  scene.frame_rate_hz = 30.0;
-  scene.particles = ParticleParams{};
-  ParticleParams& p = *scene.particles;
-  const double dt = dt_fraction * stable_time_step_s(p.stiffness_per_s2, p.damping_per_s, p.drag_per_s, 6);
-  p.substeps = 1;
-  scene.frame_rate_hz = 1.0 / dt;
+// A hexagonal pile resting on the floor of a narrow panel (no cohesion, no grip: the bare contact),
+// run for `seconds` at `dt_fraction` of the six-contact stability limit. Returns the largest speed
+// seen over the last tenth of the run (mm/s), or infinity once anything is not finite.
+double largest_late_speed(double dt_fraction, double seconds) {
+  ParticleParams p;
+  p.cohesion_mm3_s2 = p.pinning_mm3_s2 = p.yield_mm2_s2 = 0.0;
   const int columns = 40, rows = 20;
-  const double d = p.diameter_mm, row_height = d * std::sqrt(3.0) / 2.0;
-  scene.domain = Domain{400, 400, columns * d, 2.0 * rows * row_height + d};
-  const ParticleModel m = make_particle_model(scene);
-
-  std::unique_ptr<Backend> cpu = make_cpu_backend(1);
-  const int n = columns * rows - rows / 2;  // odd rows, shifted half a particle, hold one fewer
-  ParticleArrays a{};
-  a.capacity = n;
-  Buffer position = cpu->allocate(2 * n * sizeof(float)), velocity = cpu->allocate(2 * n * sizeof(float)),
-         age = cpu->allocate(n * sizeof(std::uint32_t));
-  a.position = position.as<float>();
-  a.velocity = velocity.as<float>();
-  a.age = age.as<std::uint32_t>();
-  Buffer scratch = cpu->allocate(particle_scratch_bytes(cell_count(m), n, 0));
-  point_particle_scratch(a, cell_count(m), scratch.data(), 0);
-  clear_particles(*cpu, a);
-  int slot = 0;
-  for (int row = 0; row < rows; ++row)
-    for (int col = 0; col < columns - row % 2; ++col, ++slot) {
-      a.position[2 * slot] = float((col + 0.5 + 0.5 * (row % 2)) * d);
-      a.position[2 * slot + 1] = float(scene.domain.height_mm - d / 2 - row * row_height);
-      a.age[slot] = 0;
-    }
-  ParticleArgs args{};
-  args.model = m;
-  args.arrays = a;
-  args.live_count = n;  // every slot holds a particle
-  args.first_live_slot = 0;
+  Scene scene = test::box_scene(columns * p.diameter_mm, 2.0 * rows * p.diameter_mm, p);
+  const ParticleMechanics mech = particle_mechanics(p, scene.domain, 30.0);
+  scene.particles->substeps = 1;
+  scene.frame_rate_hz = 1.0 / (dt_fraction * stable_time_step_s(mech.stiffness_per_s2, mech.damping_per_s,
+                                                                 p.drag_per_s, 6));
+  test::ParticleBox box(scene, test::hex_block(scene, columns, rows));
+  const long steps = std::lround(seconds / box.dt());
   double late = 0.0;
-  for (int s = 0; s < steps; ++s) {
-    for (ParticlePhase phase : {ParticlePhase::bin, ParticlePhase::collide, ParticlePhase::integrate})
-      cpu_twin(phase, args, 1);
+  for (long s = 0; s < steps; ++s) {
+    box.step();
     if (s < steps - steps / 10) continue;
-    for (int i = 0; i < n; ++i) {
-      const double speed = std::hypot(a.velocity[2 * i], a.velocity[2 * i + 1]);
-      if (!std::isfinite(speed) || !std::isfinite(a.position[2 * i]) || !std::isfinite(a.position[2 * i + 1]))
+    for (int i = 0; i < box.size(); ++i) {
+      if (!std::isfinite(box.speed(i)) || !std::isfinite(box.position(i).x) || !std::isfinite(box.position(i).y))
         return INFINITY;
-      late = std::max(late, speed);
+      late = std::max(late, box.speed(i));
     }
   }
   return late;
 }
 
 TEST(ParticleStability, APileSettlesJustInsideTheLimitAndNeverSettlesJustOutside) {
-  // Inside: the pile comes to rest (last speeds of ~0.001 mm/s, against the ~20 mm/s blood runs at).
-  EXPECT_LT(largest_late_speed(0.97, 3000), 0.01);
+  // Inside: the pile comes to rest (its fastest particle far below the 10 mm/s blood runs at).
+  EXPECT_LT(largest_late_speed(0.97, 0.5), 0.01);
   // Outside: roundoff seeds the lattice's fastest mode, which grows every step until contacts open
-  // and close with it: the pile boils (~16 mm/s at 3% past the limit, ~80 mm/s at 30%).
-  EXPECT_GT(largest_late_speed(1.03, 3000), 10.0);
+  // and close with it: the pile boils.
+  EXPECT_GT(largest_late_speed(1.03, 0.5), 1.0);
 }
 
 }  // namespace

@@ -7,6 +7,8 @@ import math
 
 import numpy as np
 
+from scenario_defaults import particle_substeps
+
 EDGE_MM = 1e-5           # a pixel centre this close to a splat's edge may fall either side in float32
 NEVER_USED = 0xFFFFFFFF  # the age of a ring slot that never held a particle
 FLOAT32_UNIT = 2.0 ** -24       # float32's unit roundoff: one rounding is off by at most this, relatively
@@ -47,10 +49,11 @@ def steps_in(seconds, steps_per_s):
 def particle_settings(scenario):
     """The [particles] table's settings (its defaults filled in by scenario_defaults.py)."""
     p = scenario["particles"]
-    substeps = p["substeps"]
+    substeps = particle_substeps(scenario)
     steps_per_s = scenario["scene"]["frame_rate_hz"] * substeps
     lifetime = steps_in(p["lifetime_s"], steps_per_s)
-    cuts = [(c["start_s"], c["rate_per_s"], c["bleed_s"]) for c in scenario["cut"]]
+    cuts = [(c["start_s"], c["wound_mm"] * c["flow_mm3_per_s_per_mm"], c["bleed_s"], c["clot_s"])
+            for c in scenario["cut"]]
     diameter = p["diameter_mm"]
     return {
         "capacity": p["capacity"],
@@ -68,13 +71,16 @@ def particle_settings(scenario):
 def emission_steps(settings, steps):
     """The step each particle id was emitted in, for the first `steps` steps.
 
-    A cut has emitted floor(rate · time bled so far) particles by time t; step n runs from n/sps
-    to (n+1)/sps and emits the difference. Ids count emissions in step order (and cut order within
-    a step, which does not matter here: a step's particles share their step)."""
+    A cut has emitted floor(blood given so far / V) particles by time t, the blood being its
+    wound's flow (mm³/s) over the time bled so far s, or clot·(1 − e^(−s/clot)) of it as it clots;
+    step n runs from n/sps to (n+1)/sps and emits the difference. Ids count emissions in step order
+    (and cut order within a step, which does not matter here: a step's particles share their step)."""
     t = np.arange(steps + 1) / settings["steps_per_s"]
     per_step = np.zeros(steps, dtype=np.int64)
-    for start, rate, bleed in settings["cuts"]:
-        by = np.floor(rate * np.clip(t - start, 0.0, bleed)).astype(np.int64)
+    for start, flow, bleed, clot in settings["cuts"]:
+        bled = np.clip(t - start, 0.0, bleed)
+        given = flow * (clot * -np.expm1(-bled / clot) if clot > 0 else bled)
+        by = np.floor(given / settings["volume"]).astype(np.int64)
         per_step += np.diff(by)
     return np.repeat(np.arange(steps, dtype=np.int64), per_step)
 

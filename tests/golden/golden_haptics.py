@@ -76,7 +76,9 @@ def cuts_along_strokes(channel):
         x, y = channel["panel_position"][n]
         if last is None or math.sqrt((x - last[0]) ** 2 + (y - last[1]) ** 2) >= channel["spacing"]:
             last = (x, y)
-            cuts.append({"x_mm": float(x), "y_mm": float(y), "start_s": float(n) / HAPTIC_RATE_HZ})
+            # Each stands for the stroke's wound up to the next cut: cut_spacing_mm of it.
+            cuts.append({"x_mm": float(x), "y_mm": float(y), "start_s": float(n) / HAPTIC_RATE_HZ,
+                         "wound_mm": channel["spacing"]})
     return cuts
 
 

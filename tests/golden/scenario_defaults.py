@@ -4,10 +4,12 @@ The defaults come from `bleedsim params --json` (the tables in core/ that the sc
 checks and the docs read), never from a copy here. What this file adds is only the documented way
 some defaults follow from other keys (docs/scenario-format.md, each key's default column):
 fade_s = min(its default, lifetime_s); sigma_px = max(0.5, radius_px / 2); the haptic origin at
-the panel's centre; a rate given as volume_mm3_per_s / particle_volume_mm3; a cut's wound from
-[spread] and [particles].
+the panel's centre; a cut's wound from [spread] and [particles]. And, from docs/particles.md's
+formulas, the sub-steps a scene with substeps = 0 runs: the fewest inside the contact's stability
+limit, the contact's stiffness derived from the deepest pile it must hold.
 """
 import json
+import math
 import subprocess
 
 TABLES = ("scene", "spread", "particles", "blur", "haptics")
@@ -32,8 +34,6 @@ def read_scenario(parsed, params):
         scenario[table] = {**defaults(params, table), **parsed[table]}
     if "particles" in scenario:
         p = scenario["particles"]
-        if "volume_mm3_per_s" in p:
-            p["rate_per_s"] = p["volume_mm3_per_s"] / p["particle_volume_mm3"]
         if "fade_s" not in written["particles"]:
             p["fade_s"] = min(p["fade_s"], p["lifetime_s"])
     if "blur" in scenario and "sigma_px" not in written["blur"]:
@@ -50,4 +50,29 @@ def fill_cut(cut, scenario, params):
     size = scenario.get("spread", defaults(params, "spread"))
     flow = scenario.get("particles", defaults(params, "particles"))
     return {**defaults(params, "cut"), "radius_mm": size["radius_mm"], "growth_per_s": size["growth_per_s"],
-            "rate_per_s": flow["rate_per_s"], "bleed_s": flow["bleed_s"], **cut}
+            "flow_mm3_per_s_per_mm": flow["flow_mm3_per_s_per_mm"], "bleed_s": flow["bleed_s"],
+            "clot_s": flow["clot_s"], **cut}
+
+
+def particle_substeps(scenario):
+    """The sub-steps per frame the particles run: the scene's, or the fewest inside the stability limit
+    z·k·dt² + (2z·c − 2γ)·dt < 4 (z = 8 contacts), with k = (|g|·H + a_coh·d)/(ε·d²), c = ζ·√(2k),
+    a_coh = q_c·d/V and H the deepest pile: the panel's extent along gravity, or the whole ring heaped
+    hexagonally into a quarter-disc in a corner, whichever is less (docs/particles.md,
+    "Incompressible at any depth")."""
+    s, p = scenario["scene"], scenario["particles"]
+    if p["substeps"] > 0:
+        return p["substeps"]
+    gx, gy = abs(p["gravity_mm_s2"][0]), abs(p["gravity_mm_s2"][1])
+    g, d, v = math.hypot(gx, gy), p["diameter_mm"], p["particle_volume_mm3"]
+    along = (gx * s["width_mm"] + gy * s["height_mm"]) / g if g > 0 else s["height_mm"]
+    heap_mm2 = p["capacity"] * math.sqrt(3) / 2 * d * d
+    depth = p["design_depth_mm"] or min(along, 2 * math.sqrt(heap_mm2 / math.pi))
+    k = (g * depth + p["cohesion_mm3_s2"] * d / v * d) / (p["compression"] * d * d)
+    c = p["damping_ratio"] * math.sqrt(2 * k)
+    a, b = 8 * k, 16 * c - 2 * p["drag_per_s"]
+    limit = (-b + math.sqrt(b * b + 16 * a)) / (2 * a)
+    n = max(1, math.floor(1 / (limit * s["frame_rate_hz"])))
+    while 1 / (s["frame_rate_hz"] * n) >= limit:
+        n += 1
+    return n

@@ -2,10 +2,14 @@
 // and [blur], each value read back or refused at its line with its key (docs/scenario-format.md).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <string>
+#include <type_traits>
+#include <variant>
 #include <vector>
 
 #include "core/runtime/input_error.h"
+#include "core/effects/particle_model.h"
 #include "core/io/scenario.h"
 #include "tests/io/scenario_text.h"
 
@@ -35,11 +39,12 @@ constexpr int kParticlesEnd = 12;
 std::string particles_with(const std::string& lines) { return kParticleBase + lines; }
 
 
-// Every [particles] key set, one per line, and two cuts: one taking its flow from [particles],
-// one giving its own. Its contact (k = 2e5, c = 50, γ = 80) is stable while
-// 8·2e5·dt² + (16·50 − 2·80)·dt = 1.6e6·dt² + 640·dt < 4, up to
-// dt = (−640 + √(640² + 16·1.6e6)) / (2·1.6e6) = (−640 + √26009600) / 3.2e6 = (−640 + 5099.96) / 3.2e6
-//    = 1.394 ms; 25 Hz × 40 sub-steps is 1 ms, where the left side is 1.6 + 0.64 = 2.24.
+// Every [particles] key set, one per line, and two cuts: one taking its wound's flow from
+// [particles], one giving its own. Its contact (docs/particles.md): d = 0.25 mm, V = 0.008 mm³,
+// cohesion 40·0.25/0.008 = 1250 mm/s², gravity |(−100.5, 1500)| = 1503.4 mm/s², a design depth of
+// 10 mm, compression 0.04: k = (1503.4·10 + 1250·0.25)/(0.04·0.0625) = 6.139e6/s²,
+// c = 0.15·√(2k) = 525.6/s, drag 80/s: stable while 8k·dt² + (16c − 160)·dt < 4, up to 0.2066 ms;
+// 25 Hz × 250 sub-steps is 0.16 ms.
 const std::string kFullParticles =
     "[scene]\n"                                                //  1
     "name = \"particles-probe\"\n"                             //  2
@@ -54,36 +59,42 @@ const std::string kFullParticles =
     "capacity = 4096\n"                                        // 11
     "diameter_mm = 0.25\n"                                     // 12
     "cell_mm = 0.5\n"                                          // 13
-    "max_per_cell = 6\n"                                       // 14
-    "rate_per_s = 800\n"                                       // 15
+    "cohesion_range = 0.4\n"                                   // 14
+    "flow_mm3_per_s_per_mm = 3.2\n"                            // 15
     "bleed_s = 1.5\n"                                          // 16
     "lifetime_s = 10\n"                                        // 17
     "fade_s = 2.5\n"                                           // 18
     "gravity_mm_s2 = [-100.5, 1500]\n"                         // 19
     "drag_per_s = 80\n"                                        // 20
-    "stiffness_per_s2 = 2e5\n"                                 // 21
-    "damping_per_s = 50\n"                                     // 22
+    "compression = 0.04\n"                                     // 21
+    "damping_ratio = 0.15\n"                                   // 22
     "max_speed_mm_s = 250\n"                                   // 23
-    "substeps = 40\n"                                          // 24  1 ms, well inside the 1.394 ms limit (below)
+    "substeps = 250\n"                                         // 24  0.16 ms, inside the 0.2066 ms limit
     "jitter_mm = 0.02\n"                                       // 25
     "velocity_mm_s = [3, -4.5]\n"                              // 26
     "velocity_jitter_mm_s = 1.25\n"                            // 27
-    "particle_volume_mm3 = 0.008\n"                            // 28  alone: the splat's volume, not the rate
+    "particle_volume_mm3 = 0.008\n"                            // 28
     "splat_radius_mm = 0.4\n"                                  // 29
-    "\n"                                                       // 30
-    "[[cut]]\n"                                                // 31  its flow from [particles]
-    "x_mm = 8.0\n"                                             // 32
-    "y_mm = 2.0\n"                                             // 33
-    "\n"                                                       // 34
-    "[[cut]]\n"                                                // 35  its own
-    "x_mm = 4.0\n"                                             // 36
-    "y_mm = 3.0\n"                                             // 37
-    "start_s = 0.5\n"                                          // 38
-    "rate_per_s = 1200\n"                                      // 39
-    "bleed_s = 0.25\n"                                         // 40
-    "\n"                                                       // 41
-    "[output]\n"                                               // 42
-    "fields = [\"splat/thickness\", \"particles/position\"]\n";  // 43
+    "clot_s = 3.0\n"                                           // 30
+    "design_depth_mm = 10\n"                                   // 31
+    "cohesion_mm3_s2 = 40\n"                                   // 32
+    "pinning_mm3_s2 = 12.5\n"                                  // 33
+    "yield_mm2_s2 = 7\n"                                       // 34
+    "birth_s = 0.05\n"                                         // 35
+    "[[cut]]\n"                                                // 36  its wound's flow from [particles]
+    "x_mm = 8.0\n"                                             // 37
+    "y_mm = 2.0\n"                                             // 38
+    "\n"                                                       // 39
+    "[[cut]]\n"                                                // 40  its own
+    "x_mm = 4.0\n"                                             // 41
+    "y_mm = 3.0\n"                                             // 42
+    "start_s = 0.5\n"                                          // 43
+    "wound_mm = 2.5\n"                                         // 44
+    "flow_mm3_per_s_per_mm = 9.6\n"                            // 45
+    "bleed_s = 0.25\n"                                         // 46
+    "clot_s = 0\n"                                             // 47
+    "[output]\n"                                               // 48
+    "fields = [\"splat/thickness\", \"particles/position\"]\n";  // 49
 
 TEST(ScenarioParticles, ReadsEveryParticleKey) {
   const Scenario scenario = parse_scenario(kFullParticles, kPath);
@@ -93,32 +104,42 @@ TEST(ScenarioParticles, ReadsEveryParticleKey) {
   EXPECT_EQ(p.capacity, 4096);
   EXPECT_EQ(p.diameter_mm, 0.25);
   EXPECT_EQ(p.cell_mm, 0.5);
-  EXPECT_EQ(p.max_per_cell, 6);
-  EXPECT_EQ(p.rate_per_s, 800.0);  // particle_volume_mm3 (line 28) without volume_mm3_per_s leaves it alone
+  EXPECT_EQ(p.cohesion_range, 0.4);
+  EXPECT_EQ(p.flow_mm3_per_s_per_mm, 3.2);
   EXPECT_EQ(p.bleed_s, 1.5);
   EXPECT_EQ(p.lifetime_s, 10.0);
   EXPECT_EQ(p.fade_s, 2.5);
   EXPECT_EQ(p.gravity_x_mm_s2, -100.5);
   EXPECT_EQ(p.gravity_y_mm_s2, 1500.0);
   EXPECT_EQ(p.drag_per_s, 80.0);
-  EXPECT_EQ(p.stiffness_per_s2, 2e5);
-  EXPECT_EQ(p.damping_per_s, 50.0);
+  EXPECT_EQ(p.compression, 0.04);
+  EXPECT_EQ(p.damping_ratio, 0.15);
   EXPECT_EQ(p.max_speed_mm_s, 250.0);
-  EXPECT_EQ(p.substeps, 40);
+  EXPECT_EQ(p.substeps, 250);
   EXPECT_EQ(p.jitter_mm, 0.02);
   EXPECT_EQ(p.velocity_x_mm_s, 3.0);
   EXPECT_EQ(p.velocity_y_mm_s, -4.5);
   EXPECT_EQ(p.velocity_jitter_mm_s, 1.25);
   EXPECT_EQ(p.particle_volume_mm3, 0.008);
   EXPECT_EQ(p.splat_radius_mm, 0.4);
+  EXPECT_EQ(p.clot_s, 3.0);
+  EXPECT_EQ(p.design_depth_mm, 10.0);
+  EXPECT_EQ(p.cohesion_mm3_s2, 40.0);
+  EXPECT_EQ(p.pinning_mm3_s2, 12.5);
+  EXPECT_EQ(p.yield_mm2_s2, 7.0);
+  EXPECT_EQ(p.birth_s, 0.05);
   EXPECT_FALSE(scene.spread.has_value());  // [particles] declares the particle flow alone
 
   ASSERT_EQ(scene.cuts.size(), 2u);
-  EXPECT_EQ(scene.cuts[0].rate_per_s, 800.0);  // from [particles]
-  EXPECT_EQ(scene.cuts[0].bleed_s, 1.5);       // from [particles]
+  EXPECT_EQ(scene.cuts[0].wound_mm, 1.0);               // a cut stands for 1 mm of wound unless it says
+  EXPECT_EQ(scene.cuts[0].flow_mm3_per_s_per_mm, 3.2);  // from [particles]
+  EXPECT_EQ(scene.cuts[0].bleed_s, 1.5);                // from [particles]
+  EXPECT_EQ(scene.cuts[0].clot_s, 3.0);                 // from [particles]
   EXPECT_EQ(scene.cuts[1].start_s, 0.5);
-  EXPECT_EQ(scene.cuts[1].rate_per_s, 1200.0);
+  EXPECT_EQ(scene.cuts[1].wound_mm, 2.5);
+  EXPECT_EQ(scene.cuts[1].flow_mm3_per_s_per_mm, 9.6);
   EXPECT_EQ(scene.cuts[1].bleed_s, 0.25);
+  EXPECT_EQ(scene.cuts[1].clot_s, 0.0);
 
   EXPECT_EQ(scenario.output.fields, (std::vector<std::string>{"splat/thickness", "particles/position"}));
 
@@ -128,41 +149,36 @@ TEST(ScenarioParticles, ReadsEveryParticleKey) {
   EXPECT_EQ(scenario.place_of("particles.max_speed_mm_s").line, 23);
   EXPECT_EQ(scenario.place_of("particles.substeps").line, 24);
   EXPECT_EQ(scenario.place_of("particles.particle_volume_mm3").line, 28);
-  EXPECT_EQ(scenario.place_of("particles.splat_radius_mm").line, 29);
-  EXPECT_EQ(scenario.place_of("cut[1].rate_per_s").line, 39);
+  EXPECT_EQ(scenario.place_of("particles.birth_s").line, 35);
+  EXPECT_EQ(scenario.place_of("cut[1].flow_mm3_per_s_per_mm").line, 45);
 }
 
-TEST(ScenarioParticles, AnEmptyTableTakesTheDocumentedDefaults) {
+TEST(ScenarioParticles, AnEmptyTableTakesTheTablesDefaults) {
   const Scenario scenario = parse_scenario(kParticleBase, kPath);
-  const Scene& scene = scenario.scene;
-  ASSERT_TRUE(scene.particles.has_value());
-  const ParticleParams& p = *scene.particles;
-  // The values docs/scenario-format.md lists, written out so that a changed default shows here.
-  EXPECT_EQ(p.capacity, 65536);
-  EXPECT_EQ(p.diameter_mm, 0.2);
-  EXPECT_EQ(p.cell_mm, 0.0);  // 0: the diameter
-  EXPECT_EQ(p.max_per_cell, 8);
-  EXPECT_EQ(p.rate_per_s, 500.0);
-  EXPECT_EQ(p.bleed_s, 2.0);
-  EXPECT_EQ(p.lifetime_s, 30.0);
-  EXPECT_EQ(p.fade_s, 1.0);
-  EXPECT_EQ(p.gravity_x_mm_s2, 0.0);
-  EXPECT_EQ(p.gravity_y_mm_s2, 1000.0);  // down the panel
-  EXPECT_EQ(p.drag_per_s, 100.0);
-  EXPECT_EQ(p.stiffness_per_s2, 4.0e5);
-  EXPECT_EQ(p.damping_per_s, 100.0);
-  EXPECT_EQ(p.max_speed_mm_s, 100.0);
-  EXPECT_EQ(p.substeps, 40);
-  EXPECT_EQ(p.jitter_mm, 0.05);
-  EXPECT_EQ(p.velocity_x_mm_s, 0.0);
-  EXPECT_EQ(p.velocity_y_mm_s, 0.0);
-  EXPECT_EQ(p.velocity_jitter_mm_s, 5.0);
-  EXPECT_EQ(p.particle_volume_mm3, 0.004);
-  EXPECT_EQ(p.splat_radius_mm, 0.0);  // 0: the diameter
+  ASSERT_TRUE(scenario.scene.particles.has_value());
+  const ParticleParams& p = *scenario.scene.particles;
+  const ParticleParams defaults;
+  // Every member the table names holds the struct's own default (what `bleedsim params` shows).
+  int compared = 0;
+  for (const Param<ParticleParams>& param : particle_table().params)
+    std::visit(
+        [&](auto field) {
+          using F = decltype(field);
+          if constexpr (std::is_same_v<F, VectorRef (*)(ParticleParams&)>) {
+            EXPECT_EQ(field(const_cast<ParticleParams&>(p)).x, field(const_cast<ParticleParams&>(defaults)).x);
+            EXPECT_EQ(field(const_cast<ParticleParams&>(p)).y, field(const_cast<ParticleParams&>(defaults)).y);
+            ++compared;
+          } else if constexpr (!std::is_same_v<F, std::monostate>) {
+            EXPECT_EQ(field(const_cast<ParticleParams&>(p)), field(const_cast<ParticleParams&>(defaults))) << param.key;
+            ++compared;
+          }
+        },
+        param.field);
+  EXPECT_EQ(compared, int(particle_table().params.size()));
   // A cut that gives no flow of its own takes [particles]' defaults.
-  ASSERT_EQ(scene.cuts.size(), 1u);
-  EXPECT_EQ(scene.cuts[0].rate_per_s, 500.0);
-  EXPECT_EQ(scene.cuts[0].bleed_s, 2.0);
+  ASSERT_EQ(scenario.scene.cuts.size(), 1u);
+  EXPECT_EQ(scenario.scene.cuts[0].flow_mm3_per_s_per_mm, defaults.flow_mm3_per_s_per_mm);
+  EXPECT_EQ(scenario.scene.cuts[0].bleed_s, defaults.bleed_s);
   EXPECT_TRUE(scenario.output.fields.empty());
 }
 
@@ -186,27 +202,32 @@ TEST(ScenarioParticles, EachKeyOutOfRangeIsRefusedAtItsLine) {
       {"diameter_mm = -1", "particles.diameter_mm", "must be greater than 0 and at most 100 (got -1)"},
       {"diameter_mm = 0", "particles.diameter_mm", "must be greater than 0 and at most 100 (got 0)"},
       {"diameter_mm = \"0.2\"", "particles.diameter_mm", "expected a number, got a string"},
-      {"cell_mm = 0.1", "particles.cell_mm", "must be 0 (the diameter) or at least diameter_mm, 0.2 mm (got 0.1)"},
-      {"max_per_cell = 0", "particles.max_per_cell", "must be between 1 and 1024 (got 0)"},
-      {"rate_per_s = -5", "particles.rate_per_s", "must be between 0 and 1e+08 (got -5)"},
-      {"rate_per_s = 1.5e8", "particles.rate_per_s", "must be between 0 and 1e+08 (got 1.5e+08)"},
-      {"volume_mm3_per_s = -1", "particles.volume_mm3_per_s", "must be between 0 and 1e+06 (got -1)"},
+      {"cell_mm = 0.1", "particles.cell_mm",
+       "must be 0 (the range) or at least the range, diameter_mm × (1 + cohesion_range) = 0.26 mm (got 0.1)"},
+      {"flow_mm3_per_s_per_mm = -5", "particles.flow_mm3_per_s_per_mm", "must be between 0 and 1e+06 (got -5)"},
       {"particle_volume_mm3 = 0", "particles.particle_volume_mm3",
        "must be greater than 0 and at most 1e+06 (got 0)"},
       {"particle_volume_mm3 = 2e6", "particles.particle_volume_mm3",
        "must be greater than 0 and at most 1e+06 (got 2e+06)"},
       {"bleed_s = -1", "particles.bleed_s", "must be between 0 and 86400 (got -1)"},
+      {"clot_s = -1", "particles.clot_s", "must be between 0 and 86400 (got -1)"},
       {"lifetime_s = 0", "particles.lifetime_s", "must be greater than 0 and at most 86400 (got 0)"},
       {"lifetime_s = nan", "particles.lifetime_s", "must be a finite number (got nan)"},
       {"fade_s = 0", "particles.fade_s", "must be greater than 0 and at most 86400 (got 0)"},
       // 30: the default lifetime.
       {"fade_s = 30.5", "particles.fade_s", "must be at most lifetime_s, 30 s (got 30.5)"},
       {"drag_per_s = -1", "particles.drag_per_s", "must be between 0 and 1e+06 (got -1)"},
-      {"stiffness_per_s2 = 0", "particles.stiffness_per_s2", "must be greater than 0 and at most 1e+12 (got 0)"},
-      {"damping_per_s = -1", "particles.damping_per_s", "must be between 0 and 1e+06 (got -1)"},
+      {"compression = 0", "particles.compression", "must be greater than 0 and at most 0.5 (got 0)"},
+      {"design_depth_mm = -1", "particles.design_depth_mm", "must be between 0 and 10000 (got -1)"},
+      {"damping_ratio = 1.5", "particles.damping_ratio", "must be between 0 and 1 (got 1.5)"},
+      {"cohesion_mm3_s2 = -1", "particles.cohesion_mm3_s2", "must be between 0 and 1e+06 (got -1)"},
+      {"cohesion_range = 3", "particles.cohesion_range", "must be between 0 and 2 (got 3)"},
+      {"pinning_mm3_s2 = -1", "particles.pinning_mm3_s2", "must be between 0 and 1e+06 (got -1)"},
+      {"yield_mm2_s2 = -1", "particles.yield_mm2_s2", "must be between 0 and 1e+06 (got -1)"},
+      {"birth_s = 11", "particles.birth_s", "must be between 0 and 10 (got 11)"},
       {"max_speed_mm_s = 0", "particles.max_speed_mm_s", "must be greater than 0 and at most 100000 (got 0)"},
       {"max_speed_mm_s = 2e5", "particles.max_speed_mm_s", "must be greater than 0 and at most 100000 (got 200000)"},
-      {"substeps = 0", "particles.substeps", "must be between 1 and 100000 (got 0)"},
+      {"substeps = -1", "particles.substeps", "must be between 0 and 100000 (got -1)"},
       {"substeps = 33.0", "particles.substeps", "expected an integer, got a floating-point number"},
       {"jitter_mm = -0.1", "particles.jitter_mm", "must be between 0 and 100 (got -0.1)"},
       {"velocity_jitter_mm_s = -1", "particles.velocity_jitter_mm_s", "must be between 0 and 100000 (got -1)"},
@@ -225,11 +246,13 @@ TEST(ScenarioParticles, FadeLongerThanTheLifetime) {
   EXPECT_EQ(parse_scenario(particles_with("lifetime_s = 5\nfade_s = 5\n"), kPath).scene.particles->fade_s, 5.0);
 }
 
-TEST(ScenarioParticles, CellSmallerThanTheDiameter) {
-  EXPECT_TRUE(refused_at(particles_with("diameter_mm = 0.5\ncell_mm = 0.4\n"), kParticlesEnd + 1,
-                         "particles.cell_mm", "must be 0 (the diameter) or at least diameter_mm, 0.5 mm (got 0.4)"));
-  // A cell as large as a particle is the smallest allowed.
-  EXPECT_EQ(parse_scenario(particles_with("diameter_mm = 0.5\ncell_mm = 0.5\n"), kPath).scene.particles->cell_mm, 0.5);
+TEST(ScenarioParticles, CellSmallerThanTheRange) {
+  // Range: 0.5 × (1 + 0.3) = 0.65 mm.
+  EXPECT_TRUE(refused_at(particles_with("diameter_mm = 0.5\ncell_mm = 0.6\n"), kParticlesEnd + 1, "particles.cell_mm",
+                         "must be 0 (the range) or at least the range, diameter_mm × (1 + cohesion_range) = 0.65 mm "
+                         "(got 0.6)"));
+  // A cell as large as the range is the smallest allowed.
+  EXPECT_EQ(parse_scenario(particles_with("diameter_mm = 0.5\ncell_mm = 0.65\n"), kPath).scene.particles->cell_mm, 0.65);
 }
 
 TEST(ScenarioParticles, VectorsNeedTwoFiniteNumbersAndNameTheBadComponent) {
@@ -260,96 +283,59 @@ TEST(ScenarioParticles, VectorsNeedTwoFiniteNumbersAndNameTheBadComponent) {
   EXPECT_EQ(refused_column(particles_with("gravity_mm_s2 = [0, \"down\"]\n")), 21);
 }
 
-TEST(ScenarioParticles, RateAndVolumeTogetherAreRefused) {
-  EXPECT_TRUE(refused_at(particles_with("rate_per_s = 100\nvolume_mm3_per_s = 2.0\nparticle_volume_mm3 = 0.004\n"),
-                         kParticlesEnd + 1, "particles.volume_mm3_per_s",
-                         "give either rate_per_s or volume_mm3_per_s, not both"));
+// The contact's stability limit and the fewest sub-steps inside it, derived here from the formulas
+// of docs/particles.md for the defaults on kParticleBase's 16 × 12 mm panel at 30 Hz:
+// H = min(12, 2·√(16384 · (√3/2)·0.04 / π)) = min(12, 26.9) = 12 mm (the panel, not the ring's
+// quarter-disc), a_coh = 20·0.2/0.004 = 1000 mm/s², k = (1000·12 + 1000·0.2)/(0.02·0.04) = 1.525e7,
+// c = 0.1·√(2k) = 552.3, γ = 100.
+struct Limit {
+  double dt_s;
+  int fewest;
+};
+Limit default_limit(double frame_rate_hz) {
+  const double k = (1000.0 * 12.0 + 1000.0 * 0.2) / (0.02 * 0.04), c = 0.1 * std::sqrt(2.0 * k), drag = 100.0;
+  const double a = 8.0 * k, b = 16.0 * c - 2.0 * drag;
+  const double limit = (-b + std::sqrt(b * b + 16.0 * a)) / (2.0 * a);
+  int fewest = 1;
+  while (1.0 / (frame_rate_hz * fewest) >= limit) ++fewest;
+  return {limit, fewest};
 }
 
-TEST(ScenarioParticles, VolumeAndParticleVolumeNeedEachOther) {
-  // A volume rate cannot be turned into a count of particles without the volume of one.
-  EXPECT_TRUE(refused_at(particles_with("volume_mm3_per_s = 2.0\n"), kParticlesEnd, "particles.volume_mm3_per_s",
-                         "needs particle_volume_mm3 beside it"));
-  // A particle volume alone is the blood each particle's splat spreads; the rate keeps its default.
-  const Scenario scenario = parse_scenario(particles_with("particle_volume_mm3 = 0.01\n"), kPath);
-  const Scene& scene = scenario.scene;
-  EXPECT_EQ(scene.particles->particle_volume_mm3, 0.01);
-  EXPECT_EQ(scene.particles->rate_per_s, 500.0);
-  EXPECT_EQ(scenario.place_of("particles.particle_volume_mm3").line, kParticlesEnd);
+TEST(ScenarioParticles, SubStepsPastTheStabilityLimitAreRefusedWithTheFewestInsideIt) {
+  const Limit limit = default_limit(30.0);
+  ASSERT_GT(limit.fewest, 10);
+  const std::string too_few = particles_with("substeps = " + std::to_string(limit.fewest - 1) + "\n");
+  EXPECT_TRUE(refused_at(too_few, kParticlesEnd, "particles.substeps",
+                         "use at least " + std::to_string(limit.fewest) + " sub-steps per frame"));
+  // The fewest inside the limit are accepted, and substeps = 0 (the default) takes them.
+  const std::string fewest = particles_with("substeps = " + std::to_string(limit.fewest) + "\n");
+  EXPECT_EQ(parse_scenario(fewest, kPath).scene.particles->substeps, limit.fewest);
+  const Scene scene = parse_scenario(kParticleBase, kPath).scene;
+  EXPECT_EQ(particle_mechanics(*scene.particles, scene.domain, 30.0).substeps, limit.fewest);
+  EXPECT_NEAR(particle_mechanics(*scene.particles, scene.domain, 30.0).step_limit_s, limit.dt_s, 1e-12);
 }
 
-TEST(ScenarioParticles, VolumeOverParticleVolumeGivesTheRate) {
-  const Scenario scenario = parse_scenario(particles_with("volume_mm3_per_s = 2.0\nparticle_volume_mm3 = 0.004\n"), kPath);
-  const Scene& scene = scenario.scene;
-  EXPECT_DOUBLE_EQ(scene.particles->rate_per_s, 500.0);  // 2 mm³/s of 0.004 mm³ particles
-  EXPECT_DOUBLE_EQ(scene.cuts[0].rate_per_s, 500.0);     // and cuts take it as their default
-  // 1e5 mm³/s of 2⁻¹⁰ mm³ particles is 102,400,000 a second: more than the 1e8 allowed.
-  EXPECT_TRUE(refused_at(particles_with("volume_mm3_per_s = 1e5\nparticle_volume_mm3 = 0.0009765625\n"),
-                         kParticlesEnd, "particles.volume_mm3_per_s",
-                         "gives 1.024e+08 particles per second; at most 1e+08"));
+TEST(ScenarioParticles, TheSpeedLimitMustKeepAStepUnderHalfADiameter) {
+  // 1e5 mm/s × 1/(30·fewest) s is far over 0.1 mm.
+  EXPECT_TRUE(refused_at(particles_with("max_speed_mm_s = 1e5\n"), kParticlesEnd, "particles.max_speed_mm_s",
+                         "mm a sub-step, not less than half a diameter (0.1 mm)"));
 }
 
-// The contact is stable while 8k·dt² + (16c − 2γ)·dt < 4 (core/effects/particle_model.h, z = 8 design
-// contacts). With stiffness k = 3.25e5/s², damping c = 100/s and drag γ = 100/s that is
-// 2.6e6·dt² + 1400·dt < 4, and at dt = 1 ms the left side is 2.6 + 1.4 = 4: the limit is exactly
-// 1 ms. In floating point too: b² + 16a = 1400² + 16·2.6e6 = 4.356e7 = 6600², so the root
-// (−1400 + 6600) / (2·2.6e6) = 5200 / 5.2e6 is one correctly rounded division, equal to 1/1000.
-// (The dashpot's own condition, 8c·dt < 2 + γ·dt, allows up to 2/(8c − γ) = 2/700 = 2.857 ms. The
-// old six-contact rule, 1.95e6·dt² + 1000·dt = 2.95 at 1 ms, would let every sub-step below pass.)
-const std::string kStiffContact = "stiffness_per_s2 = 3.25e5\n";  // damping and drag keep their 100/s
-
-TEST(ScenarioParticles, SubStepPastTheStabilityLimitIsRefusedWithTheLimitAndTheSubStepsNeeded) {
-  // 30 Hz × 33 sub-steps: 1/990 s = 1.0101 ms, past the limit (2.6e6·1.0203e-6 + 1.4·1.0101 =
-  // 2.6528 + 1.4141 = 4.067); n sub-steps stay inside it while 1/(30·n) < 1 ms, that is n > 33.3:
-  // at least 34.
-  EXPECT_TRUE(refused_at(particles_with(kStiffContact + "substeps = 33\n"), kParticlesEnd + 1, "particles.substeps",
-                         "a sub-step of 1.01 ms is past the contact model's stability limit of 1 ms (stiffness "
-                         "3.25e+05/s², damping 100/s, drag 100/s); use at least 34 sub-steps per frame, or a softer "
-                         "contact"));
-}
-
-TEST(ScenarioParticles, SubStepJustInsideTheStabilityLimitIsAccepted) {
-  // 34 sub-steps: 1/1020 s = 0.9804 ms; 2.6e6·9.612e-7 + 1.4·0.9804 = 2.499 + 1.373 = 3.872 < 4.
-  EXPECT_EQ(parse_scenario(particles_with(kStiffContact + "substeps = 34\n"), kPath).scene.particles->substeps, 34);
-}
-
-TEST(ScenarioParticles, SubStepExactlyAtTheStabilityLimitIsRefused) {
-  // 50 Hz × 20 sub-steps: exactly 1 ms, where the left side is exactly 4. The condition is strict,
-  // so 21 are needed: 1/1050 s = 0.9524 ms, 2.6e6·9.070e-7 + 1.4·0.9524 = 2.358 + 1.333 = 3.692.
-  const std::string at_50_hz = with_line(particles_with(kStiffContact + "substeps = 20\n"), 7, "frame_rate_hz = 50");
-  EXPECT_TRUE(refused_at(at_50_hz, kParticlesEnd + 1, "particles.substeps",
-                         "a sub-step of 1 ms is past the contact model's stability limit of 1 ms (stiffness 3.25e+05/s², "
-                         "damping 100/s, drag 100/s); use at least 21 sub-steps per frame"));
-  EXPECT_EQ(parse_scenario(with_line(particles_with(kStiffContact + "substeps = 21\n"), 7, "frame_rate_hz = 50"),
-                           kPath).scene.particles->substeps, 21);
-}
-
-TEST(ScenarioParticles, DefaultSubStepsAtALowFrameRateAreRefusedAtTheTable) {
-  // The default contact (k = 4e5, c = γ = 100): 3.2e6·dt² + 1400·dt < 4 up to
-  // dt = (−1400 + √(1400² + 16·3.2e6)) / (2·3.2e6) = (−1400 + √5.316e7) / 6.4e6
-  //    = (−1400 + 7291.09) / 6.4e6 = 0.92048 ms.
-  // At 25 Hz the default 40 sub-steps are 1/1000 s = 1 ms (3.2 + 1.4 = 4.6); inside needs
-  // n > 1/(25 · 0.92048 ms) = 43.46: 44 (1/1100 s = 0.9091 ms: 2.645 + 1.273 = 3.917; 43 would be
-  // 1/1075 s = 0.9302 ms: 2.769 + 1.302 = 4.071). substeps is not written, so the refusal is placed
-  // at the [particles] header.
-  const std::string at_25_hz = with_line(kParticleBase, 7, "frame_rate_hz = 25");
-  EXPECT_TRUE(refused_at(at_25_hz, 11, "particles.substeps",
-                         "a sub-step of 1 ms is past the contact model's stability limit of 0.9205 ms (stiffness "
-                         "4e+05/s², damping 100/s, drag 100/s); use at least 44 sub-steps per frame"));
-  EXPECT_TRUE(refused_at(with_line(particles_with("substeps = 43\n"), 7, "frame_rate_hz = 25"), kParticlesEnd,
-                         "particles.substeps", "use at least 44 sub-steps per frame"));
-  EXPECT_EQ(parse_scenario(with_line(particles_with("substeps = 44\n"), 7, "frame_rate_hz = 25"), kPath)
-                .scene.particles->substeps, 44);
+TEST(ScenarioParticles, EmissionPastTheSpeedLimitIsRefused) {
+  // |(0, 95)| + √2·5 = 102.07 mm/s, past the default 100.
+  EXPECT_TRUE(refused_at(particles_with("velocity_mm_s = [0, 95]\n"), kParticlesEnd, "particles.velocity_mm_s",
+                         "a new particle may leave at up to 102.1 mm/s (|velocity_mm_s| + √2 × velocity_jitter_mm_s), "
+                         "past max_speed_mm_s = 100"));
+  EXPECT_NO_THROW(parse_scenario(particles_with("velocity_mm_s = [0, 90]\n"), kPath));
 }
 
 TEST(ScenarioParticles, AFilmThickerThanTheSplatCanSumIsRefused) {
-  // 100 mm³ over the default splat radius (the 0.2 mm diameter): 100 / (π·0.04/3) = 2387 mm under
-  // the centre, past the 1e9 units of 2⁻²⁴ mm (59.6 mm) one deposit may hold.
+  // 100 mm³ in one 0.25 × 0.25 mm pixel (a splat that reaches no pixel centre puts it all there):
+  // 1600 mm, past the 1e9 units of 2⁻²⁴ mm (59.6 mm) one deposit may hold.
   EXPECT_TRUE(refused_at(particles_with("particle_volume_mm3 = 100\n"), kParticlesEnd,
                          "particles.particle_volume_mm3",
-                         "a particle of 100 mm³ over a splat radius of 0.2 mm is 2387 mm thick under its centre; "
-                         "the splat holds at most 59.6 mm per particle"));
-  EXPECT_NO_THROW(parse_scenario(particles_with("particle_volume_mm3 = 2\n"), "x.toml"));  // 47.7 mm: fits
+                         "a particle of 100 mm³ in one pixel of 0.0625 mm² is 1600 mm thick; the splat holds at most "
+                         "59.6 mm per particle in a pixel"));
 }
 
 TEST(ScenarioParticles, ParticlesLargerThanThePanel) {
@@ -364,46 +350,52 @@ TEST(ScenarioParticles, LifetimeTooLongToCountInSteps) {
 }
 
 TEST(ScenarioParticles, CollisionGridTooLargeIsPlacedAtTheTableWhenCellIsNotWritten) {
-  // A 10 m panel in 0.15 mm cells: 66667² = 4.44e9 cells.
-  const std::string huge = with_line(with_line(particles_with("diameter_mm = 0.15\n"), 4, "width_mm = 10000"), 5,
+  // A 10 m panel in cells of the range, 0.12·1.3 = 0.156 mm: ⌈64102.6⌉² = 4.109e9 cells.
+  const std::string huge = with_line(with_line(particles_with("diameter_mm = 0.12\n"), 4, "width_mm = 10000"), 5,
                                      "height_mm = 10000");
-  EXPECT_TRUE(refused_at(huge, 11, "particles.cell_mm", "the collision grid would have 4.444e+09 cells; at most 4e9"));
+  EXPECT_TRUE(refused_at(huge, 11, "particles.cell_mm", "the collision grid would have 4.109e+09 cells; at most 4e9"));
 }
 
 TEST(ScenarioParticles, UnknownKeySuggestsTheNearest) {
-  EXPECT_TRUE(refused_at(particles_with("stifness_per_s2 = 1e5\n"), kParticlesEnd, "particles.stifness_per_s2",
-                         "unknown key; did you mean 'stiffness_per_s2'?"));
+  EXPECT_TRUE(refused_at(particles_with("compresion = 0.02\n"), kParticlesEnd, "particles.compresion",
+                         "unknown key; did you mean 'compression'?"));
   EXPECT_TRUE(refused_at(particles_with("gravity = [0, 9.8]\n"), kParticlesEnd, "particles.gravity",
-                         "unknown key (known here: capacity diameter_mm cell_mm"));
+                         "unknown key (known here: capacity diameter_mm particle_volume_mm3"));
 }
 
-TEST(ScenarioParticles, CutRateAndBleedOverrideTheTablesDefaults) {
-  const Scenario scenario = parse_scenario(particles_with("rate_per_s = 300\nbleed_s = 4\n") +
-                                         "[[cut]]\nx_mm = 1.0\ny_mm = 1.0\nrate_per_s = 0\n"
-                                         "[[cut]]\nx_mm = 2.0\ny_mm = 2.0\nbleed_s = 0.5\n",
-                                     kPath);
+TEST(ScenarioParticles, CutWoundFlowAndBleedOverrideTheTablesDefaults) {
+  const Scenario scenario = parse_scenario(particles_with("flow_mm3_per_s_per_mm = 1.2\nbleed_s = 4\n") +
+                                               "[[cut]]\nx_mm = 1.0\ny_mm = 1.0\nflow_mm3_per_s_per_mm = 0\n"
+                                               "[[cut]]\nx_mm = 2.0\ny_mm = 2.0\nbleed_s = 0.5\nwound_mm = 3\n",
+                                           kPath);
   const Scene& scene = scenario.scene;
   ASSERT_EQ(scene.cuts.size(), 3u);
-  EXPECT_EQ(scene.cuts[0].rate_per_s, 300.0);  // from [particles]
+  EXPECT_EQ(scene.cuts[0].flow_mm3_per_s_per_mm, 1.2);  // from [particles]
   EXPECT_EQ(scene.cuts[0].bleed_s, 4.0);
-  EXPECT_EQ(scene.cuts[1].rate_per_s, 0.0);    // a cut that does not bleed particles
+  EXPECT_EQ(scene.cuts[1].flow_mm3_per_s_per_mm, 0.0);  // a cut that does not bleed particles
   EXPECT_EQ(scene.cuts[1].bleed_s, 4.0);
-  EXPECT_EQ(scene.cuts[2].rate_per_s, 300.0);
+  EXPECT_EQ(scene.cuts[2].flow_mm3_per_s_per_mm, 1.2);
   EXPECT_EQ(scene.cuts[2].bleed_s, 0.5);
+  EXPECT_EQ(scene.cuts[2].wound_mm, 3.0);
 }
 
-TEST(ScenarioParticles, CutRateOrBleedOutOfRange) {
+TEST(ScenarioParticles, CutFlowOrBleedOutOfRange) {
   // The new [[cut]] starts on kParticlesEnd.
-  EXPECT_TRUE(refused_at(particles_with("[[cut]]\nx_mm = 1.0\ny_mm = 1.0\nrate_per_s = -1\n"), kParticlesEnd + 3,
-                         "cut[1].rate_per_s", "must be between 0 and 1e+08 (got -1)"));
+  EXPECT_TRUE(refused_at(particles_with("[[cut]]\nx_mm = 1.0\ny_mm = 1.0\nflow_mm3_per_s_per_mm = -1\n"),
+                         kParticlesEnd + 3, "cut[1].flow_mm3_per_s_per_mm", "must be between 0 and 1e+06 (got -1)"));
   EXPECT_TRUE(refused_at(particles_with("[[cut]]\nx_mm = 1.0\ny_mm = 1.0\nbleed_s = -0.5\n"), kParticlesEnd + 3,
                          "cut[1].bleed_s", "must be between 0 and 86400 (got -0.5)"));
+  // 1e6 mm³/s/mm × 1 mm of 0.004 mm³ particles: 2.5e8 a second, past the 1e8 allowed.
+  EXPECT_TRUE(refused_at(particles_with("[[cut]]\nx_mm = 1.0\ny_mm = 1.0\nflow_mm3_per_s_per_mm = 1e6\n"),
+                         kParticlesEnd + 3, "cut[1].flow_mm3_per_s_per_mm", "gives 2.5e+08 particles per second"));
 }
 
 TEST(ScenarioParticles, CutFlowKeysWithoutParticlesAreRefusedAtTheirLine) {
-  EXPECT_TRUE(refused_at(with_line(kBase, 16, "rate_per_s = 100"), 16, "cut[1].rate_per_s",
+  EXPECT_TRUE(refused_at(with_line(kBase, 16, "flow_mm3_per_s_per_mm = 1"), 16, "cut[1].flow_mm3_per_s_per_mm",
                          "has no effect: this scene declares no [particles]"));
   EXPECT_TRUE(refused_at(with_line(kBase, 16, "bleed_s = 1.0"), 16, "cut[1].bleed_s",
+                         "has no effect: this scene declares no [particles]"));
+  EXPECT_TRUE(refused_at(with_line(kBase, 16, "wound_mm = 2"), 16, "cut[1].wound_mm",
                          "has no effect: this scene declares no [particles]"));
 }
 

@@ -1,5 +1,6 @@
 // The CPU reference gives the same bytes at any thread count: every golden scene, frame by frame,
-// at 1, 2, 3, 8 and 13 threads (13 does not divide the rows evenly).
+// at 1, 3 and 13 threads (neither 3 nor 13 divides the rows or the particles evenly, and 13 is more
+// threads than CI's cores).
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -27,7 +28,7 @@ TEST(CpuThreads, EveryThreadCountGivesTheSameFrames) {
   for (const auto& entry : std::filesystem::directory_iterator(test::source_dir() + "/scenarios/golden")) {
     const std::string scenario = entry.path().string();
     const auto one_thread = run_hashes(scenario, 1);
-    for (const int threads : {2, 3, 8, 13})
+    for (const int threads : {3, 13})
       EXPECT_EQ(run_hashes(scenario, threads), one_thread) << scenario << " at " << threads << " threads";
     ++scenarios;
   }

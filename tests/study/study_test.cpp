@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/runtime/input_error.h"
+#include "core/effects/particle_model.h"
 #include "core/study/study.h"
 #include "core/study/study_output.h"
 #include "tests/runtime/scenes_in_code.h"
@@ -46,57 +47,76 @@ TEST(StudyReference, TheSpreadConvergesWithResolution) {
       << "the reference is not converged: doubling its resolution moves it by " << error("reference_check", 0);
 }
 
-TEST(StudyKnobs, ParticleSizeKeepsTheBloodsVolume) {
+TEST(StudyKnobs, ParticleSizeKeepsTheBloodsVolumeAndFlow) {
   Scene scene = test::scene_in_code(true);
   scene.particles = ParticleParams{};
-  scene.cuts[0].rate_per_s = 500;
   const ParticleParams before = *scene.particles;
+  const Cut cut_before = scene.cuts[0];
   find_knob("particle_size")->apply(scene, 2.0);
   const ParticleParams& p = *scene.particles;
   EXPECT_DOUBLE_EQ(p.diameter_mm, 2 * before.diameter_mm);
-  EXPECT_DOUBLE_EQ(p.rate_per_s * p.particle_volume_mm3, before.rate_per_s * before.particle_volume_mm3);
-  EXPECT_DOUBLE_EQ(scene.cuts[0].rate_per_s, 125.0);
+  EXPECT_DOUBLE_EQ(p.particle_volume_mm3, 4 * before.particle_volume_mm3);  // the same film, in a quarter as many
+  EXPECT_EQ(p.flow_mm3_per_s_per_mm, before.flow_mm3_per_s_per_mm);       // the same blood a second
+  EXPECT_EQ(scene.cuts[0].flow_mm3_per_s_per_mm, cut_before.flow_mm3_per_s_per_mm);
   EXPECT_EQ(p.capacity, before.capacity / 4);
 }
 
-TEST(StudyKnobs, FewerSubstepsSoftenTheContactMoreRefineTheStepAlone) {
+TEST(StudyKnobs, SubstepsRefineTheStepAloneFromTheFewestTheContactAllows) {
   Scene scene = test::scene_in_code(true);
-  scene.particles = ParticleParams{};  // 40 sub-steps, k = 4e5, c = 100
-  Scene coarse = scene, fine = scene;
-  find_knob("substeps")->apply(coarse, 20);
-  EXPECT_EQ(coarse.particles->substeps, 20);
-  EXPECT_DOUBLE_EQ(coarse.particles->stiffness_per_s2, 1e5);  // k·dt² kept
-  EXPECT_DOUBLE_EQ(coarse.particles->damping_per_s, 50);       // c·dt kept
-  find_knob("substeps")->apply(fine, 80);
-  EXPECT_EQ(fine.particles->substeps, 80);
-  EXPECT_DOUBLE_EQ(fine.particles->stiffness_per_s2, 4e5);
+  scene.particles = ParticleParams{};  // substeps = 0: the fewest inside the limit
+  const int fewest = particle_mechanics(*scene.particles, scene.domain, scene.frame_rate_hz).substeps;
+  const Knob& knob = *find_knob("substeps");
+  EXPECT_EQ(knob.base(scene), double(fewest));
+  EXPECT_EQ(knob.default_sweep(scene), (std::vector<double>{double(fewest), 2.0 * fewest, 4.0 * fewest}));
+  Scene fine = scene;
+  knob.apply(fine, 2 * fewest);
+  EXPECT_EQ(fine.particles->substeps, 2 * fewest);
+  // The contact is the same: only the step changed.
+  const ParticleMechanics a = particle_mechanics(*scene.particles, scene.domain, scene.frame_rate_hz);
+  const ParticleMechanics b = particle_mechanics(*fine.particles, fine.domain, fine.frame_rate_hz);
+  EXPECT_EQ(a.stiffness_per_s2, b.stiffness_per_s2);
+  EXPECT_EQ(a.damping_per_s, b.damping_per_s);
+  EXPECT_DOUBLE_EQ(b.dt_s, a.dt_s / 2);
 }
 
 Scene particle_scene() {
   Scene scene = test::scene_in_code(true);
-  scene.particles = ParticleParams{};  // 40 sub-steps; k = 4e5/s², stable below 0.92 ms
+  scene.particles = ParticleParams{};
   return scene;
 }
 
+int fewest_substeps(const Scene& scene) {
+  return particle_mechanics(*scene.particles, scene.domain, scene.frame_rate_hz).substeps;
+}
+
 TEST(StudyRuns, ASettingPastTheStabilityLimitIsARefusedRow) {
-  // The reference (k = 4e6, 400 sub-steps of 0.083 ms) is stable; k = 4e6 at the base's 40
-  // sub-steps (0.83 ms) is not, and is recorded as refused with the model's reason.
-  Study study(particle_scene(), spec_of({{find_knob("stiffness"), {4e5, 4e6}}, {find_knob("substeps"), {40, 400}}}, 0.1));
+  // Half the fewest sub-steps the contact allows is past its stability limit: that row is refused
+  // with the model's reason, and the rows inside the limit run.
+  const Scene scene = particle_scene();
+  const double fewest = fewest_substeps(scene);
+  const double half = std::floor(fewest / 2);
+  Study study(scene, spec_of({{find_knob("substeps"), {half, fewest, 2 * fewest}}}, 0.1));
   const std::vector<StudyRun> runs = study.run([](long) {});
-  EXPECT_EQ(find_run(runs, "stiffness", 4e6).status.rfind("refused: particles.substeps: a sub-step of 0.8333 ms is past", 0), 0u)
-      << find_run(runs, "stiffness", 4e6).status;
-  EXPECT_TRUE(find_run(runs, "stiffness", 4e6).errors.empty());
-  for (const auto& [knob, value] : {std::pair<const char*, double>{"stiffness", 4e5}, {"substeps", 40}, {"substeps", 400}})
-    EXPECT_EQ(find_run(runs, knob, value).status, "ok") << knob << " " << value;
+  const StudyRun& refused = find_run(runs, "substeps", half);
+  EXPECT_EQ(refused.status.rfind("refused: particles.substeps: a sub-step of ", 0), 0u) << refused.status;
+  EXPECT_NE(refused.status.find("use at least " + std::to_string(int(fewest)) + " sub-steps"), std::string::npos)
+      << refused.status;
+  EXPECT_TRUE(refused.errors.empty());
+  for (const double value : {fewest, 2 * fewest}) EXPECT_EQ(find_run(runs, "substeps", value).status, "ok") << value;
 }
 
 TEST(StudyRuns, AnUnrunnableReferenceStopsTheStudy) {
-  Study study(particle_scene(), spec_of({{find_knob("stiffness"), {4e5, 4e7}}}, 0.1));
+  // With the sub-steps pinned at the fewest the default contact allows, a hundredth of the
+  // compression (a hundred times the stiffness, ten times the stiffness' rate) cannot run.
+  Scene scene = particle_scene();
+  scene.particles->substeps = fewest_substeps(scene);
+  const double e = scene.particles->compression;
+  Study study(scene, spec_of({{find_knob("compression"), {e / 100, e}}}, 0.1));
   try {
     study.run([](long) {});
     FAIL() << "an unstable reference ran";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("reference: the finest settings (stiffness 4e+07) cannot run: refused: "
+    EXPECT_NE(std::string(e.what()).find("reference: the finest settings (compression 0.0002) cannot run: refused: "
                                          "particles.substeps"),
               std::string::npos)
         << e.what();
