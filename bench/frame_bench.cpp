@@ -77,7 +77,7 @@ Scene frame_scene(const Size& size, int n) {
   scene.seed = 1;
   scene.particles = ParticleParams{};
   scene.particles->capacity = n;
-  scene.particles->lifetime_s = 1.0e6;  // 1.2e9 steps: every particle is alive and unfaded
+  scene.particles->lifetime_s = 86400.0;  // a day (the most a scene may ask): every particle alive, unfaded
   scene.blur = BlurParams{};
   const double scale = std::sqrt(double(n) / kReferenceParticles);
   scene.domain.width_px = size.width;

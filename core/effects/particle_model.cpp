@@ -108,6 +108,7 @@ ParticleModel make_particle_model(const Scene& scene) {
   m.diameter_sq = m.diameter_mm * m.diameter_mm;
   m.range_mm = float(mech.range_mm);
   m.range_sq = m.range_mm * m.range_mm;
+  m.band_inverse = mech.range_mm > p.diameter_mm ? float(1.0 / (mech.range_mm - p.diameter_mm)) : 0.0f;
   m.stiffness = float(mech.stiffness_per_s2);
   m.damping = float(mech.damping_per_s);
   m.cohesion = float(mech.cohesion_mm_s2);

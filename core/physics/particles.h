@@ -41,6 +41,7 @@ struct ParticleModel {
   float diameter_sq;       // diameter², the contact test
   float range_mm;          // the farthest a neighbour acts from: contact plus cohesion
   float range_sq;
+  float band_inverse;      // 1/(range − diameter): the cohesion's fall beyond contact, a factor (0: no band)
   float stiffness;         // 1/s²: contact acceleration per mm of overlap
   float damping;           // 1/s: contact acceleration per mm/s of approach speed
   float cohesion;          // mm/s²: a neighbour's pull within the range
@@ -227,7 +228,7 @@ BLEEDSIM_HD inline void coincident_direction(std::uint32_t slot, std::uint32_t o
 // nothing (with zero slope) at the range.
 BLEEDSIM_HD inline float cohesion_share(const ParticleModel& m, float r) {
   if (r <= m.diameter_mm) return 1.0f;
-  const float q = (m.range_mm - r) / (m.range_mm - m.diameter_mm);
+  const float q = (m.range_mm - r) * m.band_inverse;
   return q * q;
 }
 
@@ -261,8 +262,9 @@ BLEEDSIM_HD inline void add_pair(const ParticleModel& m, float px, float py, flo
   float nx, ny, r;
   if (r2 > 0.0f) {
     r = sqrtf(r2);
-    nx = dx / r;
-    ny = dy / r;
+    const float r_inverse = 1.0f / r;  // one division for both components (and the same for the pair)
+    nx = dx * r_inverse;
+    ny = dy * r_inverse;
   } else {
     r = 0.0f;
     coincident_direction(slot, other, &nx, &ny);
@@ -309,10 +311,31 @@ BLEEDSIM_HD inline void finish_pair_sums(const ParticleArrays& p, const Particle
                     sums.company < m.edge_company;
 }
 
+// The sorted positions [begin, end) of the particles in cells x0 … x1 of row y: the cells of a row
+// are consecutive keys, so their particles are one run of the sorted order (empty cells mark no
+// range: start = end, at 0 on the GPU and wherever the count reached on the CPU).
+struct SortedRun {
+  std::uint32_t begin, end;
+};
+BLEEDSIM_HD inline SortedRun row_run(const ParticleArrays& p, const ParticleModel& m, int y, int x0, int x1) {
+  SortedRun run{0xffffffffu, 0u};
+  for (int x = x0; x <= x1; ++x) {
+    const std::uint32_t cell = std::uint32_t(y) * std::uint32_t(m.cells_x) + std::uint32_t(x);
+    const std::uint32_t start = p.cell_start[cell], end = p.cell_end[cell];
+    if (start == end) continue;
+    run.begin = start < run.begin ? start : run.begin;
+    run.end = end > run.end ? end : run.end;
+  }
+  if (run.begin > run.end) run.begin = run.end;
+  return run;
+}
+
 // The pair forces on the particle at sorted position i from every neighbour in the 3 × 3 cells
-// around its own: row by row, each cell's particles in sorted order. No cap on a crowded cell: a
-// pair's forces are summed from both sides or from neither. Writes its acceleration and whether it
-// is on the film's edge: its neighbours all on one side, or too few to surround it.
+// around its own: row by row, each row's cells left to right and their particles in sorted order
+// (one run of the sorted order a row). No cap on a crowded cell: a pair's forces are summed from
+// both sides or from neither. A neighbour's velocity and age are read only once it is within the
+// range (about a third of the particles of the 3 × 3 cells are), and its slot only when it
+// coincides with this one (the slot names the pair's direction only then).
 BLEEDSIM_HD inline void collide_particle(const ParticleArrays& p, const ParticleModel& m, int i) {
   const std::uint32_t key = p.sorted_key[i];
   if (key == sentinel_key(m)) return;
@@ -322,17 +345,20 @@ BLEEDSIM_HD inline void collide_particle(const ParticleArrays& p, const Particle
   const float px = p.sorted_position[2 * i], py = p.sorted_position[2 * i + 1];
   const float vx = p.sorted_velocity[2 * i], vy = p.sorted_velocity[2 * i + 1];
   const std::uint32_t age = p.sorted_age[i];
+  const int x0 = cx > 0 ? cx - 1 : 0, x1 = cx + 1 < m.cells_x ? cx + 1 : cx;
   PairSums sums;
   for (int ny = cy - 1; ny <= cy + 1; ++ny) {
     if (ny < 0 || ny >= m.cells_y) continue;
-    for (int nx = cx - 1; nx <= cx + 1; ++nx) {
-      if (nx < 0 || nx >= m.cells_x) continue;
-      const std::uint32_t cell = std::uint32_t(ny) * std::uint32_t(m.cells_x) + std::uint32_t(nx);
-      for (std::uint32_t j = p.cell_start[cell]; j < p.cell_end[cell]; ++j) {
-        if (j == std::uint32_t(i)) continue;
-        add_pair(m, px, py, vx, vy, age, slot, p.sorted_position[2 * j], p.sorted_position[2 * j + 1],
-                 p.sorted_velocity[2 * j], p.sorted_velocity[2 * j + 1], p.sorted_age[j], p.sorted_slot[j], &sums);
-      }
+    const SortedRun run = row_run(p, m, ny, x0, x1);
+    for (std::uint32_t j = run.begin; j < run.end; ++j) {
+      if (j == std::uint32_t(i)) continue;
+      const float qx = p.sorted_position[2 * j], qy = p.sorted_position[2 * j + 1];
+      const float dx = px - qx, dy = py - qy;
+      const float r2 = dx * dx + dy * dy;
+      if (r2 >= m.range_sq) continue;
+      const std::uint32_t other = r2 > 0.0f ? 0u : p.sorted_slot[j];
+      add_pair(m, px, py, vx, vy, age, slot, qx, qy, p.sorted_velocity[2 * j],
+               p.sorted_velocity[2 * j + 1], p.sorted_age[j], other, &sums);
     }
   }
   finish_pair_sums(p, m, slot, sums);

@@ -305,8 +305,9 @@ void run_and_check(const std::string& name, Scene scene, const Expect& expect, R
     for (int s = 0; s < p.slots(); ++s)
       if (is_alive(m, p.age[s]))
         r.max_speed = std::max(r.max_speed, std::hypot(double(p.velocity[2 * s]), double(p.velocity[2 * s + 1])));
-    if (expect.burst)
+    if (expect.burst) {
       ASSERT_LT(r.max_speed, 2.0 * terminal_speed) << name << ", frame " << k << " (t = " << sim.time_s() << " s)";
+    }
     if (each_frame) each_frame(p);
     r.max_alive = std::max(r.max_alive, p.counts.alive);
     const double ke = kinetic_energy(m, p);
