@@ -138,6 +138,34 @@ TEST(Validate, DescribesTheRunWithoutWritingAnything) {
   EXPECT_NE(tissue.output.find("stages     blend\n"), std::string::npos) << tissue.output;
 }
 
+// The particle model as validate describes it, from the default parameters (docs/particles.md):
+// film t = 0.004 / (√3/2 · 0.2²) = 0.1155 mm; the yield's grip 50 / t = 433.0 mm/s²; the critical
+// drop R = 2 · 30 / (t · (1000 − 433.0)) = 0.9164 mm, V = t · π · R² = 0.3047 mm³. And the ring: one
+// cut bleeding 2 mm³/s for 2 s has 4 / 0.004 = 1000 particles alive within a 30 s lifetime, more
+// than 64 slots (a warning, and still valid), fewer than 1024 (no warning).
+TEST(Validate, DescribesTheParticlesAndWarnsWhenTheRingWillOverwriteLiveBlood) {
+  const fs::path dir = scratch_folder();
+  const auto scene_with_capacity = [&](int capacity) {
+    const fs::path file = dir / ("ring-" + std::to_string(capacity) + ".toml");
+    write_text(file, "[scene]\nname = \"ring\"\nwidth_px = 64\nheight_px = 48\nwidth_mm = 16.0\nheight_mm = 12.0\n"
+                     "duration_s = 1.0\n[particles]\ncapacity = " +
+                         std::to_string(capacity) + "\n[[cut]]\nx_mm = 8.0\ny_mm = 2.0\n");
+    return run_cli("validate '" + file.string() + "'");
+  };
+  const CliResult small = scene_with_capacity(64);
+  ASSERT_EQ(small.exit_code, 0) << small.output;
+  EXPECT_NE(small.output.find("film       0.115 mm thick; the mucosa holds drops up to 0.305 mm³ (radius 0.916 mm)"),
+            std::string::npos)
+      << small.output;
+  EXPECT_NE(small.output.find("warning: the cuts can have up to 1000 particles alive at once"), std::string::npos)
+      << small.output;
+  EXPECT_NE(small.output.find("more than the ring's 64 slots: it will overwrite live blood"), std::string::npos)
+      << small.output;
+  const CliResult large = scene_with_capacity(1024);
+  ASSERT_EQ(large.exit_code, 0) << large.output;
+  EXPECT_EQ(large.output.find("warning"), std::string::npos) << large.output;
+}
+
 TEST(Backend, AutoSaysWhichBackendItTookAndWhy) {
   const CliResult result = run_cli("run '" + scenario("golden/spread-single.toml") + "' --no-hdf5 --out '" +
                                    (scratch_folder() / "out").string() + "'");
