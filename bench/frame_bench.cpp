@@ -1,7 +1,9 @@
 // The screen-space frame against the 30 Hz frame budget (33.3 ms), stage by stage: the spread, the
 // splat, each pass of the blur (downsample, horizontal, vertical, upsample) and the four together,
-// the blend, and the whole frame (spread + splat + the four blur passes + blend). On CUDA at
-// 1920×1080 and 3840×2160 with 1,048,576 particles; on the CPU reference at 1920×1080 with 65,536.
+// the blend, and the whole frame (spread + splat + the four blur passes + blend); and the endoscope's
+// view: the trail, the blend lit by the headlight with highlights over the residue too, and the whole
+// lit frame (the frame's stages + trail + the lit blend). On CUDA at 1920×1080 and 3840×2160 with
+// 1,048,576 particles; on the CPU reference at 1920×1080 with 65,536.
 //
 // The particles are input only (no physics runs): N particles of the default 0.2 mm diameter on a
 // hexagonal lattice at the bottom of the panel, touching, all alive (age 0, a lifetime of 10⁶ s),
@@ -30,7 +32,9 @@
 #include "bench/bench_util.h"
 #include "core/physics/pixel_kernels.h"
 #include "core/runtime/backend.h"
+#include "core/effects/blend_stage.h"
 #include "core/effects/blur_stage.h"
+#include "core/effects/trail_stage.h"
 #include "core/effects/particle_model.h"
 #include "core/runtime/scene.h"
 #include "core/effects/splat_stage.h"
@@ -47,7 +51,7 @@ constexpr int kCutCount = 8;
 constexpr double kPanelWidthMm = 480.0, kPanelHeightMm = 270.0;
 constexpr double kReferenceParticles = 1048576.0;
 
-enum class Work { spread, splat, downsample, horizontal, vertical, upsample, blur, blend, frame };
+enum class Work { spread, splat, downsample, horizontal, vertical, upsample, blur, blend, frame, trail, blend_lit, frame_lit };
 
 const char* name_of(Work work) {
   switch (work) {
@@ -60,6 +64,9 @@ const char* name_of(Work work) {
     case Work::blur: return "blur";
     case Work::blend: return "blend";
     case Work::frame: return "frame";
+    case Work::trail: return "trail";
+    case Work::blend_lit: return "blend_lit";
+    case Work::frame_lit: return "frame_lit";
   }
   return "?";
 }
@@ -100,11 +107,12 @@ struct FrameScene {
   double film_max_mm = 0.0;    // the blurred film after one frame: its thickest pixel ...
   double film_share = 0.0;     // ... and the share of the panel it covers
 
-  Buffer position, age, units, film, weights, low, across, blurred, cuts, stain, tissue, transmission, frame_rgba;
+  Buffer position, age, units, film, weights, low, across, blurred, cuts, stain, tissue, tables, residue, frame_rgba;
   SpreadPixel spread_work{};
   SplatArgs splat_args{};
   BlurArgs blur_args{};
-  BlendPixel blend_work{};
+  TrailPixel trail_work{};
+  BlendPixel blend_work{}, lit_blend_work{};
 
   FrameScene(std::unique_ptr<Backend> b, const Size& s, int count)
       : backend(std::move(b)), size(s), n(count), scene(frame_scene(s, count)) {
@@ -181,17 +189,27 @@ struct FrameScene {
     spread_work = {cuts.as<const SpreadCut>(), kCutCount, grid, stain.as<float>()};
 
     // The blend, as BlendStage runs it in a scene with a blurred film: stain and blur/thickness
-    // over the procedural tissue, through the Beer–Lambert table.
+    // over the procedural tissue, in linear light; lit, in a scene with [optics] and [trail], also
+    // the residue, the headlight's falloff and the highlights. The trail as TrailStage runs it.
     tissue = backend->allocate(pixels * 4);
     const Image texture = procedural_tissue(grid.width, grid.height, 1);
     backend->upload(tissue.data(), texture.rgba.data(), tissue.bytes());
-    std::vector<float> table(kTransmissionEntries);
-    fill_transmission_table(table.data());
-    transmission = backend->allocate(table.size() * sizeof(float));
-    backend->upload(transmission.data(), table.data(), transmission.bytes());
+    const std::vector<float> host_tables = optics_tables();
+    tables = backend->allocate(host_tables.size() * sizeof(float));
+    backend->upload(tables.data(), host_tables.data(), tables.bytes());
+    residue = backend->allocate(pixels * sizeof(float));
+    const std::vector<float> dry(pixels, 0.0f);
+    backend->upload(residue.data(), dry.data(), residue.bytes());
     frame_rgba = backend->allocate(pixels * 4);
-    blend_work = {tissue.as<const std::uint8_t>(), stain.as<const float>(), blurred.as<const float>(),
-                  transmission.as<const float>(), grid, frame_rgba.as<std::uint8_t>()};
+    blend_work = bleedsim::blend_work(scene, tables.as<const float>(), tissue.as<const std::uint8_t>(), stain.as<const float>(),
+                       blurred.as<const float>(), nullptr, frame_rgba.as<std::uint8_t>());
+    Scene lit = scene;
+    lit.optics = OpticsParams{};
+    lit.trail = TrailParams{};
+    lit_blend_work = bleedsim::blend_work(lit, tables.as<const float>(), tissue.as<const std::uint8_t>(), stain.as<const float>(),
+                           blurred.as<const float>(), residue.as<const float>(), frame_rgba.as<std::uint8_t>());
+    trail_work = {film.as<const float>(), residue.as<float>(), float(lit.trail->residue),
+                  trail_decay_per_frame(*lit.trail, lit.frame_rate_hz), grid};
 
     // One frame, to see that the film is there.
     frame();
@@ -217,6 +235,14 @@ struct FrameScene {
     blur();
     blend();
   }
+  void trail() { backend->run("trail", trail_work); }
+  void frame_lit() {
+    spread();
+    splat();
+    blur();
+    trail();
+    backend->run("blend", lit_blend_work);
+  }
   void run(Work work) {
     switch (work) {
       case Work::spread: spread(); break;
@@ -228,6 +254,9 @@ struct FrameScene {
       case Work::blur: blur(); break;
       case Work::blend: blend(); break;
       case Work::frame: frame(); break;
+      case Work::trail: trail(); break;
+      case Work::blend_lit: backend->run("blend", lit_blend_work); break;
+      case Work::frame_lit: frame_lit(); break;
     }
   }
 };
@@ -283,6 +312,7 @@ void time_frame(benchmark::State& state, BackendKind kind, const Size& size, int
       case Work::horizontal:
       case Work::vertical: state.counters["Mpixel/s"] = low / (ms * 1e3); break;
       case Work::frame:
+      case Work::frame_lit:
         state.counters["Mpixel/s"] = panel / (ms * 1e3);
         state.counters["Mparticle/s"] = double(n) / (ms * 1e3);
         state.counters["film_max_mm"] = scene->film_max_mm;
@@ -316,8 +346,9 @@ void register_case(BackendKind kind, const Size& size, int n, Work work) {
 
 void register_frame_benchmarks() {
   // Grouped by backend, size and N, so each scene is built once.
-  const Work works[] = {Work::spread,   Work::splat, Work::downsample, Work::horizontal, Work::vertical,
-                        Work::upsample, Work::blur,  Work::blend,      Work::frame};
+  const Work works[] = {Work::spread,   Work::splat,    Work::downsample, Work::horizontal,
+                        Work::vertical, Work::upsample, Work::blur,       Work::blend,
+                        Work::frame,    Work::trail,    Work::blend_lit,  Work::frame_lit};
   for (const Work work : works) register_case(BackendKind::cpu, k1080p, 65536, work);
   for (const Size& size : {k1080p, k2160p})
     for (const Work work : works) register_case(BackendKind::cuda, size, 1048576, work);

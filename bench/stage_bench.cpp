@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "bench/bench_util.h"
+#include "core/effects/blend_stage.h"
 #include "core/physics/pixel_kernels.h"
 #include "core/runtime/backend.h"
 #include "core/runtime/tissue.h"
@@ -29,7 +30,8 @@ const Size kSizes[] = {{"256x256", 256, 256}, {"1920x1080", 1920, 1080}, {"3840x
 struct StageScene {
   std::unique_ptr<Backend> backend;
   PixelGrid grid;
-  Buffer cuts, stain, tissue, frame;
+  Scene scene;  // the panel, for the blend: unlit, the stain alone over the tissue
+  Buffer cuts, stain, tissue, frame, tables;
   int cut_count = 8;
 
   StageScene(std::unique_ptr<Backend> b, const Size& size) : backend(std::move(b)) {
@@ -46,11 +48,15 @@ struct StageScene {
     tissue = backend->allocate(pixels * 4);
     const Image texture = procedural_tissue(size.width, size.height, 1);
     backend->upload(tissue.data(), texture.rgba.data(), tissue.bytes());
+    scene.domain = Domain{size.width, size.height, w_mm, h_mm};
+    const std::vector<float> host_tables = optics_tables();
+    tables = backend->allocate(host_tables.size() * sizeof(float));
+    backend->upload(tables.data(), host_tables.data(), tables.bytes());
   }
   void spread() { backend->run("spread", SpreadPixel{cuts.as<const SpreadCut>(), cut_count, grid, stain.as<float>()}); }
   void blend() {
-    backend->run("blend", BlendPixel{tissue.as<const std::uint8_t>(), stain.as<const float>(), nullptr, nullptr, grid,
-                                     frame.as<std::uint8_t>()});
+    backend->run("blend", blend_work(scene, tables.as<const float>(), tissue.as<const std::uint8_t>(),
+                                     stain.as<const float>(), nullptr, nullptr, frame.as<std::uint8_t>()));
   }
 };
 

@@ -9,9 +9,8 @@ namespace {
 
 std::size_t rgba_bytes(const Scene& scene) { return std::size_t(scene.domain.pixel_count()) * 4; }
 
-std::size_t transmission_bytes(const Scene& scene) {
-  return blend_film_field(scene) ? kTransmissionEntries * sizeof(float) : 0;
-}
+// IEC 61966-2-1: the sRGB code value c ∈ [0, 1] as linear light.
+double linear_from_code(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
 
 }  // namespace
 
@@ -21,30 +20,64 @@ const char* blend_film_field(const Scene& scene) {
   return scene.blur ? "blur/thickness" : scene.particles ? "splat/thickness" : nullptr;
 }
 
-void fill_transmission_table(float* table) {
-  for (int k = 0; k < kTransmissionEntries; ++k)
-    table[k] = static_cast<float>(std::exp(-double(k) / kTransmissionStepsPerUnit));
+const char* blend_residue_field(const Scene& scene) { return scene.trail ? "trail/residue" : nullptr; }
+
+std::vector<float> optics_tables() {
+  std::vector<float> t;
+  for (int b = 0; b < kSrgbBytes; ++b) t.push_back(float(linear_from_code(b / 255.0)));
+  for (int k = 0; k + 1 < kSrgbBytes; ++k) t.push_back(float(linear_from_code((k + 0.5) / 255.0)));
+  for (int k = 0; k < kTransmissionEntries; ++k) t.push_back(float(std::exp(-double(k) / kTransmissionStepsPerUnit)));
+  return t;
+}
+
+BloodOptics blood_optics(const OpticsParams& o) {
+  const BloodAbsorption a = blood_absorption(o);
+  return {{float(a.per_mm[0]), float(a.per_mm[1]), float(a.per_mm[2])}, float(o.stain_depth_mm)};
+}
+
+Headlight headlight(const OpticsParams& o, const Domain& d) {
+  return {float(d.width_mm / 2 + o.camera_x_mm), float(d.height_mm / 2 + o.camera_y_mm), float(o.camera_height_mm),
+          o.falloff ? 1 : 0,   float(o.specular),  o.shininess, float(o.sheen), o.sheen_shininess};
+}
+
+BlendPixel blend_work(const Scene& scene, const float* tables, const std::uint8_t* tissue_rgba, const float* stain,
+                      const float* film_mm, const float* residue_mm, std::uint8_t* frame_rgba) {
+  const OpticsParams optics = scene.optics.value_or(OpticsParams{});
+  const PixelGrid grid = scene.domain.grid();
+  return BlendPixel{tissue_rgba,
+                    stain,
+                    film_mm,
+                    residue_mm,
+                    tables + 2 * kSrgbBytes - 1,
+                    SrgbTables{tables, tables + kSrgbBytes},
+                    blood_optics(optics),
+                    scene.optics ? 1 : 0,
+                    headlight(optics, scene.domain),
+                    0.5f / grid.mm_per_px_x,
+                    0.5f / grid.mm_per_px_y,
+                    grid,
+                    frame_rgba};
 }
 
 BlendStage::BlendStage(const StageKind& kind, const Scene& scene, State& state, Backend& backend)
     : Stage(kind),
       tissue_(allocate(backend, rgba_bytes(scene))),
-      transmission_(allocate(backend, transmission_bytes(scene))) {
+      tables_(allocate(backend, kOpticsTableFloats * sizeof(float))) {
   const auto input_or_null = [&](const char* name) {
     return name ? input(scene, state, name).data.as<const float>() : nullptr;
   };
   Field& frame = add_field(scene, state, backend, "frame");
-  work_ = BlendPixel{tissue_.as<const std::uint8_t>(), input_or_null(blend_stain_field(scene)),
-                     input_or_null(blend_film_field(scene)), transmission_.as<const float>(), scene.domain.grid(),
-                     frame.data.as<std::uint8_t>()};
+  const std::vector<float> tables = optics_tables();
+  backend.upload(tables_.data(), tables.data(), tables.size() * sizeof(float));
   backend.upload(tissue_.data(), scene.tissue.rgba.data(), rgba_bytes(scene));
-  if (transmission_.bytes() == 0) return;
-  float table[kTransmissionEntries];
-  fill_transmission_table(table);
-  backend.upload(transmission_.data(), table, sizeof table);
+  work_ = blend_work(scene, tables_.as<const float>(), tissue_.as<const std::uint8_t>(),
+                     input_or_null(blend_stain_field(scene)), input_or_null(blend_film_field(scene)),
+                     input_or_null(blend_residue_field(scene)), frame.data.as<std::uint8_t>());
 }
 
-std::size_t BlendStage::bytes_for(const Scene& scene) { return 2 * rgba_bytes(scene) + transmission_bytes(scene); }
+std::size_t BlendStage::bytes_for(const Scene& scene) {
+  return 2 * rgba_bytes(scene) + kOpticsTableFloats * sizeof(float);
+}
 
 void BlendStage::run(const Scene&, State&, Backend& backend) { launch(backend, work_); }
 

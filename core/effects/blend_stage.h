@@ -1,14 +1,17 @@
 #pragma once
 #include <cstddef>
+#include <vector>
 
+#include "core/effects/optics_params.h"
 #include "core/effects/stage.h"
 #include "core/physics/blend.h"
 
 namespace bleedsim {
 
-// (tissue, spread/stain, the film: blur/thickness or splat/thickness) => frame
-// Each frame: the blood's fields composited over the tissue into the RGBA8 frame. Every scene
-// has it: without effects the frame is the bare tissue.
+// (tissue, spread/stain, the film: blur/thickness or splat/thickness, trail/residue) => frame
+// Each frame: the blood's fields composited over the tissue into the RGBA8 frame, in linear light,
+// lit by the endoscope's headlight in a scene with [optics]. Every scene has it: without effects
+// the frame is the bare tissue.
 class BlendStage final : public Stage {
  public:
   BlendStage(const StageKind& kind, const Scene& scene, State& state, Backend& backend);
@@ -16,15 +19,31 @@ class BlendStage final : public Stage {
   void run(const Scene& scene, State& state, Backend& backend) override;
 
  private:
-  Buffer tissue_;        // the scene's tissue, uploaded once
-  Buffer transmission_;  // the Beer–Lambert table, for scenes with a film of blood
+  Buffer tissue_;  // the scene's tissue, uploaded once
+  Buffer tables_;  // optics_tables(), uploaded once
   BlendPixel work_{};
 };
 
 // What the blend lays over the tissue, by field name, or null where the scene has none of it: the
 // stain, spread/stain with [spread]; the film of blood, blur/thickness with [blur], else
-// splat/thickness with [particles].
+// splat/thickness with [particles]; the residue, trail/residue with [trail].
 const char* blend_stain_field(const Scene& scene);
 const char* blend_film_field(const Scene& scene);
+const char* blend_residue_field(const Scene& scene);
+
+// The tables the blend reads, one after another, made on the host in double and rounded once to
+// float: sRGB's 256 bytes in linear light; the 255 boundaries between them (the linear value of
+// code (k + ½)/255); exp(−k / kTransmissionStepsPerUnit) for the Beer–Lambert transmission.
+constexpr std::size_t kOpticsTableFloats = kSrgbBytes + (kSrgbBytes - 1) + kTransmissionEntries;
+std::vector<float> optics_tables();
+
+// The blood as an absorber, and the headlight, for a scene's optics (the defaults without [optics]).
+BloodOptics blood_optics(const OpticsParams& optics);
+Headlight headlight(const OpticsParams& optics, const Domain& domain);
+
+// The blend's work over a scene's fields (stain, film and residue may be null), reading the
+// tables at `tables` (optics_tables(), on the backend that runs it): what BlendStage runs.
+BlendPixel blend_work(const Scene& scene, const float* tables, const std::uint8_t* tissue_rgba, const float* stain,
+                      const float* film_mm, const float* residue_mm, std::uint8_t* frame_rgba);
 
 }  // namespace bleedsim

@@ -5,6 +5,7 @@
 #include "core/effects/particle_stage.h"
 #include "core/effects/splat_stage.h"
 #include "core/effects/spread_stage.h"
+#include "core/effects/trail_stage.h"
 
 namespace bleedsim {
 namespace {
@@ -49,7 +50,7 @@ const std::vector<StageKind>& stage_kinds() {
   static const std::vector<StageKind> kinds = {
       {"spread", "spread", [](const Scene& s) { return s.spread.has_value(); },
        {image("spread/stain", ElementType::f32, 1, "1",
-              "radial-spread stain: fraction of the tissue's green and blue taken out (report 2.2.1)")},
+              "radial-spread stain: the share of a full stain (report 2.2.1), drawn as stain_depth_mm of blood")},
        no_fields, SpreadStage::bytes_for, make<SpreadStage>},
       {"particles", "particles", [](const Scene& s) { return s.particles.has_value(); },
        {elements("particles/position", ElementType::f32, 2, true, "mm", "centre of each ring-buffer slot's particle"),
@@ -70,12 +71,17 @@ const std::vector<StageKind>& stage_kinds() {
               "the film of blood downsampled, blurred and upsampled: what the blend lays over the tissue")},
        [](const Scene&) { return std::vector<std::string>{"splat/thickness"}; }, BlurStage::bytes_for,
        make<BlurStage>},
+      {"trail", "trail", [](const Scene& s) { return s.trail.has_value(); },
+       {image("trail/residue", ElementType::f32, 1, "mm",
+              "the blood that ran over each pixel, left behind as an equivalent film and drying")},
+       [](const Scene&) { return std::vector<std::string>{"splat/thickness"}; }, TrailStage::bytes_for,
+       make<TrailStage>},
       {"blend", "", [](const Scene&) { return true; },
        {image("frame", ElementType::u8, 4, "sRGB 8-bit",
-              "the rendered frame: blood composited over the tissue (RGBA)")},
+              "the rendered frame: blood composited over the tissue in linear light (RGBA)")},
        [](const Scene& s) {
          std::vector<std::string> reads;
-         for (const char* field : {blend_stain_field(s), blend_film_field(s)})
+         for (const char* field : {blend_stain_field(s), blend_film_field(s), blend_residue_field(s)})
            if (field) reads.push_back(field);
          return reads;
        },

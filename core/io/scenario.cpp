@@ -339,9 +339,10 @@ InputError Scenario::placed(const InputError& error) const {
 }
 
 std::vector<TableView> scenario_tables() {
-  return {describe(scene_table()),  describe(tissue_table()),   describe(spread_table()),
-          describe(particle_table()), describe(blur_table()),   describe(haptic_table()),
-          describe(cut_table()),    describe(output_table())};
+  return {describe(scene_table()),    describe(tissue_table()), describe(spread_table()),
+          describe(particle_table()), describe(blur_table()),   describe(trail_table()),
+          describe(optics_table()),   describe(haptic_table()), describe(cut_table()),
+          describe(output_table())};
 }
 
 const ParamView& scenario_param(const std::string& key) {
@@ -374,6 +375,8 @@ Scenario parse_scenario(const std::string& text, const std::string& path) {
   read_effect(r, root, spread_table(), s.scene.spread, s.scene);
   read_effect(r, root, particle_table(), s.scene.particles, s.scene);
   read_effect(r, root, blur_table(), s.scene.blur, s.scene);
+  read_effect(r, root, trail_table(), s.scene.trail, s.scene);
+  read_effect(r, root, optics_table(), s.scene.optics, s.scene);
   read_cuts(r, root, s);
   read_haptics(r, root, s);
   r.read(r.table(root, "output"), output_table(), s.output, s.scene, "output");

@@ -1,81 +1,83 @@
 #pragma once
-// Compositing the blood over the tissue into the frame (report §2.2.1, its HLSL pass): the stain
-// is taken out of the tissue's green and blue, so stained tissue reads red with the stain's soft
-// edge; red and alpha pass through. The particles' film of blood (core/physics/splat.h) then lies over it. Bytes map to [0, 1] as v/255 and back with round-half-up.
-#include <cmath>
+// Compositing the blood over the tissue into the frame (report §2.2.1 and §2.2.2.5; docs/optics.md):
+// in linear light, the tissue's colour times the light that crosses the blood over it twice, down
+// and back up (Beer–Lambert), every absorber drawn as an equivalent film of whole blood — the film
+// the particles leave, the stain the spread takes into the tissue, the residue of blood that ran
+// there. A scene with [optics] is also lit by the endoscope's headlight: its falloff, and the
+// highlights wet blood and tissue show towards the lens.
 #include <cstddef>
 #include <cstdint>
 
 #include "core/physics/hd.h"
+#include "core/physics/optics.h"
 #include "core/physics/pixel_grid.h"
 
 namespace bleedsim {
 
-BLEEDSIM_HD inline float unit_from_byte(std::uint8_t v) { return static_cast<float>(v) / 255.0f; }
+// Blood as an absorber: μ_c (1/mm) for red, green and blue, and the film a full stain stands for.
+struct BloodOptics {
+  float absorption_per_mm[3];
+  float stain_depth_mm;
+};
 
-BLEEDSIM_HD inline std::uint8_t byte_from_unit(float v) {
-  // Clamp before converting: float→int of out-of-range values differs between CPU and GPU.
-  const float clamped = fminf(fmaxf(v, 0.0f), 1.0f);
-  return static_cast<std::uint8_t>(clamped * 255.0f + 0.5f);
-}
-
-// Light crossing a film of blood h mm thick keeps exp(−a_c·h) of channel c (Beer–Lambert): blood
-// absorbs green and blue strongly and red weakly, so a thin film reads bright red over the tissue
-// and a pool darkens towards black.
-constexpr float kBloodAbsorbsRedPerMm = 4.0f, kBloodAbsorbsGreenPerMm = 40.0f, kBloodAbsorbsBluePerMm = 45.0f;
-
-// exp(−x) from a table computed once on the host (fill_transmission_table()), linearly interpolated:
-// expf differs between the host's libm and the device, a table read the same way does not.
-constexpr int kTransmissionStepsPerUnit = 64;
-constexpr int kTransmissionEntries = 32 * kTransmissionStepsPerUnit + 1;  // x in [0, 32]
-
-BLEEDSIM_HD inline float transmitted(const float* table, float optical_depth) {
-  const float s = optical_depth * float(kTransmissionStepsPerUnit);
-  if (!(s < float(kTransmissionEntries - 1))) return table[kTransmissionEntries - 1];
-  const float k = floorf(s);
-  const int i = int(k);
-  return table[i] + (table[i + 1] - table[i]) * (s - k);
-}
-
-BLEEDSIM_HD inline void blend_pixel(const std::uint8_t* tissue_rgba, float stain, float thickness_mm,
-                                    const float* transmission, std::uint8_t* frame_rgba) {
-  const float green = unit_from_byte(tissue_rgba[1]) - stain;
-  const float blue = unit_from_byte(tissue_rgba[2]) - stain;
-  if (thickness_mm > 0.0f) {
-    const auto through_film = [&](float below, float absorbs_per_mm) {
-      return byte_from_unit(below * transmitted(transmission, absorbs_per_mm * thickness_mm));
-    };
-    frame_rgba[0] = through_film(unit_from_byte(tissue_rgba[0]), kBloodAbsorbsRedPerMm);
-    frame_rgba[1] = through_film(fmaxf(green, 0.0f), kBloodAbsorbsGreenPerMm);
-    frame_rgba[2] = through_film(fmaxf(blue, 0.0f), kBloodAbsorbsBluePerMm);
-  } else {
-    // No film: exactly the stained tissue (scenes without particles keep their bytes).
-    frame_rgba[0] = tissue_rgba[0];
-    frame_rgba[1] = byte_from_unit(green);
-    frame_rgba[2] = byte_from_unit(blue);
-  }
-  frame_rgba[3] = tissue_rgba[3];
-}
-
-// The table transmitted() reads: exp(−k / kTransmissionStepsPerUnit), in double, rounded once.
-void fill_transmission_table(float* table);
-
-// The stage's work, pixel by pixel (core/physics/pixel_kernels.h runs it). stain and thickness_mm
-// may be null: a scene without that effect shows none of it. transmission is needed with thickness_mm.
+// The stage's work, pixel by pixel (core/physics/pixel_kernels.h runs it). stain, film_mm and
+// residue_mm may be null: a scene without that effect shows none of it; transmission is needed
+// with any of them. lit: the scene has [optics], so the headlight's falloff and highlights apply.
 struct BlendPixel {
   const std::uint8_t* tissue_rgba;
   const float* stain;
-  const float* thickness_mm;
-  const float* transmission;  // kTransmissionEntries, with thickness_mm
+  const float* film_mm;
+  const float* residue_mm;
+  const float* transmission;  // kTransmissionEntries
+  SrgbTables srgb;
+  BloodOptics blood;
+  int lit;
+  Headlight light;
+  float half_inverse_pitch_x, half_inverse_pitch_y;  // 1 / (2 · the pixel's size in mm): the slope's step
   PixelGrid grid;
   std::uint8_t* frame_rgba;
 
   BLEEDSIM_HD int width() const { return grid.width; }
   BLEEDSIM_HD int height() const { return grid.height; }
+
+  // The blood over pixel p, as a depth of whole blood (mm): film, then stain, then residue.
+  BLEEDSIM_HD float blood_depth_mm(std::size_t p) const {
+    float depth = film_mm ? film_mm[p] : 0.0f;
+    if (stain) depth += stain[p] * blood.stain_depth_mm;
+    if (residue_mm) depth += residue_mm[p];
+    return depth;
+  }
+
+  // The film's slope at (i, j): central differences, the edge pixel standing in for one off the panel.
+  BLEEDSIM_HD float film_at(int i, int j) const {
+    i = i < 0 ? 0 : (i >= grid.width ? grid.width - 1 : i);
+    j = j < 0 ? 0 : (j >= grid.height ? grid.height - 1 : j);
+    return film_mm[std::size_t(j) * grid.width + i];
+  }
+
   BLEEDSIM_HD void operator()(int i, int j) const {
     const std::size_t p = std::size_t(j) * grid.width + i;
-    blend_pixel(tissue_rgba + 4 * p, stain ? stain[p] : 0.0f, thickness_mm ? thickness_mm[p] : 0.0f, transmission,
-                frame_rgba + 4 * p);
+    const std::uint8_t* tissue = tissue_rgba + 4 * p;
+    float light_c[3] = {linear_from_srgb(srgb, tissue[0]), linear_from_srgb(srgb, tissue[1]),
+                        linear_from_srgb(srgb, tissue[2])};
+    const float depth = blood_depth_mm(p);
+    if (depth > 0.0f)
+      for (int c = 0; c < 3; ++c) light_c[c] *= transmitted(transmission, 2.0f * blood.absorption_per_mm[c] * depth);
+    if (lit) {
+      const float x = pixel_centre_x_mm(grid, i), y = pixel_centre_y_mm(grid, j);
+      float z = 0.0f, slope_x = 0.0f, slope_y = 0.0f;
+      if (film_mm) {
+        z = film_mm[p];
+        slope_x = (film_at(i + 1, j) - film_at(i - 1, j)) * half_inverse_pitch_x;
+        slope_y = (film_at(i, j + 1) - film_at(i, j - 1)) * half_inverse_pitch_y;
+      }
+      const float highlight = reflected_to_lens(light, x, y, z, slope_x, slope_y);
+      const float irradiance = light.falloff ? headlight_falloff(light, x, y) : 1.0f;
+      for (int c = 0; c < 3; ++c) light_c[c] = (light_c[c] + highlight) * irradiance;
+    }
+    std::uint8_t* frame = frame_rgba + 4 * p;
+    for (int c = 0; c < 3; ++c) frame[c] = srgb_from_linear(srgb, light_c[c]);
+    frame[3] = tissue[3];
   }
 };
 

@@ -7,6 +7,7 @@
 #include "core/physics/blur.h"
 #include "core/physics/splat.h"
 #include "core/physics/spread.h"
+#include "core/physics/trail.h"
 
 #define BLEEDSIM_PIXEL_KERNELS(X) \
   X(SpreadPixel)                  \
@@ -14,7 +15,8 @@
   X(BlurDownsample)               \
   X(BlurGaussian)                 \
   X(BlurUpsample)                 \
-  X(SplatThickness)
+  X(SplatThickness)               \
+  X(TrailPixel)
 
 namespace bleedsim {
 

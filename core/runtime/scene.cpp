@@ -113,6 +113,10 @@ ParamProblem scene_problem(const Scene& scene) {
     if (ParamProblem problem = check_params(particle_table(), *scene.particles, scene)) return problem;
   if (scene.blur)
     if (ParamProblem problem = check_params(blur_table(), *scene.blur, scene)) return problem;
+  if (scene.trail)
+    if (ParamProblem problem = check_params(trail_table(), *scene.trail, scene)) return problem;
+  if (scene.optics)
+    if (ParamProblem problem = check_params(optics_table(), *scene.optics, scene)) return problem;
   if (scene.haptics)
     if (ParamProblem problem = check_params(haptic_table(), *scene.haptics, scene)) return problem;
   if (scene.trace && (!scene.haptics || scene.trace->samples.empty()))

@@ -9,8 +9,10 @@
 #include <vector>
 
 #include "core/effects/blur_params.h"
+#include "core/effects/optics_params.h"
 #include "core/effects/particle_params.h"
 #include "core/effects/spread_params.h"
+#include "core/effects/trail_params.h"
 #include "core/haptics/haptic_params.h"
 #include "core/haptics/trace.h"
 #include "core/physics/pixel_grid.h"
@@ -45,6 +47,8 @@ struct Scene {
   std::optional<SpreadParams> spread;  // the effects the scene calls for
   std::optional<ParticleParams> particles;
   std::optional<BlurParams> blur;
+  std::optional<TrailParams> trail;
+  std::optional<OpticsParams> optics;  // the endoscope's headlight; without it, flat light
   std::optional<HapticParams> haptics;
   std::optional<Trace> trace;          // replayed through the haptic loop, one sample per tick
   std::vector<Cut> cuts;               // cuts the scene makes, in the order written (the order

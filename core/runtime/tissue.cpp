@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "core/physics/blend.h"
+#include "core/runtime/image.h"
 
 namespace bleedsim {
 namespace {

@@ -131,8 +131,8 @@ TEST(Validate, DescribesTheRunWithoutWritingAnything) {
   const CliResult result = run_cli("validate '" + scenario("default.toml") + "'");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   EXPECT_NE(result.output.find("valid"), std::string::npos);
-  // The default scene runs every stage: the spread, the particles, their film and its blur.
-  EXPECT_NE(result.output.find("stages     spread, particles, splat, blur, blend\n"), std::string::npos)
+  // The default scene runs every stage: the spread, the particles, their film, its blur, the trails.
+  EXPECT_NE(result.output.find("stages     spread, particles, splat, blur, trail, blend\n"), std::string::npos)
       << result.output;
   const CliResult tissue = run_cli("validate '" + scenario("tissue-only.toml") + "'");
   EXPECT_NE(tissue.output.find("stages     blend\n"), std::string::npos) << tissue.output;

@@ -34,9 +34,10 @@ TEST(Pipeline, ASceneWithoutTheSpreadHasNoneOfItsCost) {
   ASSERT_EQ(report.size(), 1u);
   EXPECT_EQ(report[0].name, "blend");
   EXPECT_EQ(report[0].launches, 5u);
-  // The backend itself never ran the spread, and holds only the tissue and the frame.
+  // The backend itself never ran the spread, and holds only the tissue, the frame and the blend's
+  // optical tables.
   EXPECT_EQ(sim.backend().launches("spread"), 0u);
-  EXPECT_EQ(sim.backend().bytes_in_use(), 2u * 64 * 48 * 4);
+  EXPECT_EQ(sim.backend().bytes_in_use(), 2u * 64 * 48 * 4 + kOpticsTableFloats * sizeof(float));
   EXPECT_EQ(sim.field_names(), std::vector<std::string>({"frame"}));
   EXPECT_THROW(sim.field("spread/stain"), std::out_of_range);
 }

@@ -9,7 +9,6 @@
 #include <numeric>
 #include <vector>
 
-#include "core/physics/blend.h"
 #include "core/physics/splat.h"
 #include "core/effects/splat_stage.h"
 
@@ -158,32 +157,6 @@ TEST(Splat, AFadingParticleLeavesLessAndADeadOneNothing) {
   const int n = full.pixels_within(1.0, 1.0, 0.2);
   EXPECT_NEAR(fading.volume_mm3(), 0.5 * full.volume_mm3(), (n + 1.0) * kSplatUnitMm * full.pixel_area_mm2());
   EXPECT_EQ(dead.volume_mm3(), 0.0);
-}
-
-TEST(BeerLambert, TheTableFollowsTheExponential) {
-  std::vector<float> table(kTransmissionEntries);
-  fill_transmission_table(table.data());
-  EXPECT_EQ(transmitted(table.data(), 0.0f), 1.0f);
-  for (double x = 0.0; x < 40.0; x += 0.0137) {
-    const double exact = x < 32.0 ? std::exp(-x) : std::exp(-32.0);
-    // Linear interpolation at steps of 1/64 errs by at most (1/64)²/8 of the value.
-    EXPECT_NEAR(transmitted(table.data(), float(x)), exact, 3.1e-5 * exact + 1e-7) << x;
-  }
-}
-
-TEST(BeerLambert, AThinFilmReadsRedAndAPoolDark) {
-  std::vector<float> table(kTransmissionEntries);
-  fill_transmission_table(table.data());
-  const std::uint8_t tissue[4] = {200, 150, 140, 255};
-  std::uint8_t bare[4], thin[4], pool[4];
-  blend_pixel(tissue, 0.0f, 0.0f, table.data(), bare);
-  blend_pixel(tissue, 0.0f, 0.02f, table.data(), thin);
-  blend_pixel(tissue, 0.0f, 1.0f, table.data(), pool);
-  EXPECT_EQ(std::vector<int>(bare, bare + 4), (std::vector<int>{200, 150, 140, 255}));
-  // 0.02 mm keeps e^−0.08 of the red (185) and e^−0.8, e^−0.9 of green and blue (67, 57).
-  EXPECT_EQ(std::vector<int>(thin, thin + 4), (std::vector<int>{185, 67, 57, 255}));
-  // 1 mm: e^−4 of the red, nothing visible of green and blue.
-  EXPECT_EQ(std::vector<int>(pool, pool + 4), (std::vector<int>{4, 0, 0, 255}));
 }
 
 }  // namespace

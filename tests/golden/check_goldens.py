@@ -21,11 +21,17 @@ rounding:
   rounding carried through the passes, and exactly 0 where no film reaches; and its volume: the
   film's, plus exactly what the edges' clamped taps and partial blocks move (the blur keeps the
   volume of the film further than its reach from the edges);
-- what the blend must do to the frame, with the film it lays over the tissue (blur/thickness in a
-  scene with [blur], splat/thickness otherwise): alpha untouched; where there is no film, red
-  untouched and green and blue only ever taken away, and by the stain; under the film, each
-  channel of the stained tissue times the Beer–Lambert transmission exp(−a_c · h),
-  a = (4, 40, 45) per mm.
+- what the blend must do to the frame (docs/optics.md), from the tissue, the stain, the film it lays
+  over the tissue (blur/thickness in a scene with [blur], splat/thickness otherwise) and the residue
+  (trail/residue in a scene with [trail]): in linear light (IEC 61966-2-1), the tissue times
+  exp(−2 · μ_c · depth), depth = film + stain · stain_depth_mm + residue, with μ_c whole blood's
+  absorption at 650, 550 and 450 nm from haemoglobin's molar extinction (Prahl, after Gratzer and
+  Kollias) at the scene's saturation; in a scene with [optics], lit by the headlight at the lens: its
+  falloff (h² / (h² + ρ²))^(3/2) and the highlights, the tissue's sheen (n·v)^q and the blood's
+  (n·v)^p less the flat plane's, n from the film's slope by central differences; back to bytes by
+  rounding to the nearest code. The tissue is the scene's texture where it is as large as the panel
+  (read with PIL), else where a key frame shows it bare (no blood, unlit); alpha passes through. The
+  residue is at least its share of the film under it.
 
 - for scenes with a [haptics] table (docs/haptics.md), the whole haptic channel replayed from the
   trace file (samples, contact, penetration, force, cutting), the force rising on contact and
@@ -47,18 +53,63 @@ import numpy as np
 
 from golden_film import check_blur, check_particles, pixel_centres
 from golden_haptics import check_haptics
-from scenario_defaults import fill_cut, load_params, read_scenario
+from scenario_defaults import defaults, fill_cut, load_params, read_scenario
 
 STAIN_TOLERANCE = 2e-6   # float32 arithmetic in the reference, float64 here ...
 STAIN_TOLERANCE_PER_CUT = 3e-7   # ... and each overlapping cut's factor adds a few float32 roundings
 BYTE_TOLERANCE = 1       # the frame's bytes: one rounding step
-ABSORPTION_PER_MM = (4.0, 40.0, 45.0)  # the blend's Beer–Lambert coefficients (core/physics/blend.h)
-OPTICAL_DEPTH_MAX = 32.0               # the transmission table's end: deeper reads exp(−32)
+OPTICAL_DEPTH_MAX = 32.0 # the transmission table's end: deeper reads exp(−32)
+EXTINCTION = ((368.0, 3750.12), (43016.0, 53412.0), (62816.0, 103292.0))  # cm⁻¹/M, (HbO2, Hb) at 650, 550, 450 nm
+HAEMOGLOBIN_G_PER_MOLE = 64500.0
 
 
-def byte_half_up(v):
-    """[0, 1] to a byte, rounding half up, as the blend does."""
-    return np.floor(np.clip(v, 0.0, 1.0) * 255.0 + 0.5)
+def srgb_to_linear(byte):
+    c = np.asarray(byte, dtype=np.float64) / 255.0
+    return np.where(c <= 0.04045, c / 12.92, ((c + 0.055) / 1.055) ** 2.4)
+
+
+def linear_to_byte(v):
+    """Linear light to the nearest sRGB code, as the blend rounds."""
+    v = np.clip(np.asarray(v, dtype=np.float64), 0.0, 1.0)
+    return np.floor(np.where(v <= 0.0031308, 12.92 * v, 1.055 * v ** (1 / 2.4) - 0.055) * 255.0 + 0.5)
+
+
+def absorption_per_mm(optics):
+    s, c = optics["oxygen_saturation"], optics["haemoglobin_g_per_l"] / HAEMOGLOBIN_G_PER_MOLE
+    return [2.303 * (s * o + (1 - s) * d) * c / 10.0 for o, d in EXTINCTION]
+
+
+def lit_terms(scene, optics, film):
+    """(highlight, irradiance) per pixel for the headlight at the lens."""
+    x, y = pixel_centres(scene)
+    xx, yy = np.meshgrid(x, y)
+    pitch_x, pitch_y = scene["width_mm"] / scene["width_px"], scene["height_mm"] / scene["height_px"]
+    padded = np.pad(film.astype(np.float64), 1, mode="edge")
+    slope_x = (padded[1:-1, 2:] - padded[1:-1, :-2]) / (2 * pitch_x)
+    slope_y = (padded[2:, 1:-1] - padded[:-2, 1:-1]) / (2 * pitch_y)
+    cx = scene["width_mm"] / 2 + optics["camera_mm"][0]
+    cy = scene["height_mm"] / 2 + optics["camera_mm"][1]
+    h = optics["camera_height_mm"]
+    vx, vy, vz = cx - xx, cy - yy, h - film
+    v = np.sqrt(vx * vx + vy * vy + vz * vz)
+    upright = vz / v
+    facing = (vz - slope_x * vx - slope_y * vy) / v / np.sqrt(slope_x ** 2 + slope_y ** 2 + 1)
+    relief = np.where(facing > 0, np.maximum(facing, 0) ** optics["shininess"] - upright ** optics["shininess"], 0)
+    highlight = optics["sheen"] * upright ** optics["sheen_shininess"] + optics["specular"] * np.maximum(relief, 0)
+    rho2 = (xx - cx) ** 2 + (yy - cy) ** 2
+    irradiance = (h * h / (h * h + rho2)) ** 1.5 if optics["falloff"] else np.ones_like(rho2)
+    return highlight, irradiance
+
+
+def scene_tissue(root, scenario):
+    """The tissue's RGBA bytes where the scene's texture is as large as the panel, else None."""
+    texture = scenario.get("tissue", {}).get("texture")
+    if not texture:
+        return None
+    from PIL import Image
+    image = np.asarray(Image.open(root / "scenarios/golden" / texture).convert("RGBA")).astype(int)
+    scene = scenario["scene"]
+    return image if image.shape[:2] == (scene["height_px"], scene["width_px"]) else None
 
 
 def expected_stain(scenario, t):
@@ -77,61 +128,46 @@ def expected_stain(scenario, t):
 
 # ---- particles -------------------------------------------------------------------------------
 
-def check_frames(keys, frames, stains, films, problems, notes, film_name="splat/thickness"):
-    """What the blend must have done. The tissue is not stored: where some key frame shows it with
-    no film over it its red is the tissue's, and where that frame is unstained too, its green and
-    blue. films is the film the blend lays over the tissue, film_name's field."""
+def check_frames(keys, frames, depths, films, tissue, optics, lit, scene, problems, notes):
+    """What the blend must have drawn: each key frame recomputed from the tissue and the blood over it
+    (depths: film + stain · stain_depth_mm + residue; films: the film the blend lays over the tissue)."""
     frames = frames.astype(int)
-    bare = films == 0.0
     if not (frames[..., 3] == frames[0, ..., 3]).all():
         problems.append("alpha changed between key frames; the blend passes it through")
-    tissue = np.zeros(frames.shape[1:3] + (3,), dtype=int)
-    known = np.zeros(frames.shape[1:3] + (3,), dtype=bool)
-    for i in reversed(range(len(keys))):   # frame 0 last: the least stained wins
-        clean = bare[i] & (stains[i] == 0.0)
-        for c, where in ((0, bare[i]), (1, clean), (2, clean)):
-            tissue[..., c][where] = frames[i, ..., c][where]
-            known[..., c] |= where
-    checked = unknown = 0
+    known = np.ones(frames.shape[1:3], dtype=bool)
+    if tissue is None:
+        if lit:
+            problems.append("a scene with [optics] needs a texture as large as the panel for its frames to be checked")
+            return
+        # Unlit, a pixel with no blood over it shows the tissue's bytes exactly (sRGB's round trip).
+        tissue = np.zeros(frames.shape[1:3] + (4,), dtype=int)
+        known[:] = False
+        for i in range(len(keys)):
+            bare = depths[i] == 0.0
+            tissue[bare] = frames[i][bare]
+            known |= bare
+    mu = absorption_per_mm(optics)
+    checked = 0
     for i, k in enumerate(keys):
-        now, film, stain = frames[i], films[i].astype(np.float64), stains[i].astype(np.float64)
-        # No film: red untouched, green and blue the tissue's less the stain.
-        if (now[..., 0] != tissue[..., 0])[bare[i]].any():
-            problems.append(f"key frame {k}: red changed where there is no film; only the stain takes green and blue")
-        for c in (1, 2):
-            wanted = np.clip(tissue[..., c] - stain * 255.0, 0, 255)
-            where = bare[i] & known[..., c]
-            off = np.abs(now[..., c] - wanted)[where].max(initial=0)
-            if off > BYTE_TOLERANCE:
-                problems.append(f"key frame {k}: channel {c} is off the tissue minus the stain by {off}")
-        # Under the film: the stained tissue times the light that crosses it, exp(−a_c · h)
-        # (the reference reads it from a table of exp(−n/64), linearly: 3e-5 off at most).
-        under = ~bare[i]
+        light = srgb_to_linear(tissue[..., :3])
+        depth = depths[i].astype(np.float64)
         for c in range(3):
-            where = under & known[..., c]
-            checked += int(where.sum())
-            unknown += int((under & ~known[..., c]).sum())
-            if not where.any():
-                continue
-            below = np.maximum(tissue[..., c] / 255.0 - (stain if c else 0.0), 0.0)
-            depth = np.minimum(ABSORPTION_PER_MM[c] * film, OPTICAL_DEPTH_MAX)
-            wanted = byte_half_up(below * np.exp(-depth))
-            bad = where & (np.abs(now[..., c] - wanted) > BYTE_TOLERANCE)
-            if bad.any():
-                j, x = np.argwhere(bad)[0]
-                problems.append(f"key frame {k}: channel {c} of {bad.sum()} pixels under the film is not the "
-                                f"stained tissue's light through it (first ({x}, {j}): {now[j, x, c]}, film "
-                                f"{film[j, x]:.4g} mm, tissue {int(byte_half_up(below[j, x]))}, "
-                                f"expected {int(wanted[j, x])})")
-        # A film only takes light away: under it, red is never above the tissue's (exactly: the
-        # transmission is at most 1, and v/255 back to a byte is v).
-        brighter = under & known[..., 0] & (now[..., 0] > tissue[..., 0])
-        if brighter.any():
-            j, x = np.argwhere(brighter)[0]
-            problems.append(f"key frame {k}: {brighter.sum()} pixels under the film are redder than the tissue "
-                            f"(first ({x}, {j}): {now[j, x, 0]} over {tissue[j, x, 0]})")
-    if checked or unknown:
-        notes.append(f"frame under the film ({film_name}): {checked} pixel channels checked, {unknown} with the tissue unknown")
+            light[..., c] *= np.exp(-np.minimum(2 * mu[c] * depth, OPTICAL_DEPTH_MAX))
+        if lit:
+            highlight, irradiance = lit_terms(scene, optics, films[i])
+            light = (light + highlight[..., None]) * irradiance[..., None]
+        wanted = linear_to_byte(light)
+        bad = known[..., None] & (np.abs(frames[i, ..., :3] - wanted) > BYTE_TOLERANCE)
+        checked += 3 * int(known.sum())
+        if bad.any():
+            j, x, c = np.argwhere(bad)[0]
+            problems.append(f"key frame {k}: {bad.sum()} pixel channels are not the blood's light over the tissue "
+                            f"(first ({x}, {j}) channel {c}: {frames[i, j, x, c]}, depth {depth[j, x]:.4g} mm, "
+                            f"tissue {tissue[j, x, c]}, expected {int(wanted[j, x, c])})")
+        if (frames[i, ..., 3] != tissue[..., 3])[known].any():
+            problems.append(f"key frame {k}: alpha is not the tissue's")
+    notes.append(f"frame: {checked} pixel channels recomputed{' (lit)' if lit else ''}, "
+                 f"{int((~known).sum())} pixels with the tissue unknown")
 
 
 def check_scene(root, golden, name, params):
@@ -154,20 +190,26 @@ def check_scene(root, golden, name, params):
                                 for cut in check_haptics(root, scenario, f, expected_frames, problems, notes)]
         has_spread, has_particles = "spread" in scenario, "particles" in scenario
         has_blur = has_particles and "blur" in scenario   # the parser refuses [blur] without [particles]
+        has_trail = has_particles and "trail" in scenario
         wanted_fields = ((["spread/stain"] if has_spread else []) +
                          (["particles/position", "particles/velocity", "particles/age", "particles/accounting",
                            "splat/thickness"] if has_particles else []) +
-                         (["blur/thickness"] if has_blur else []) + ["frame"])
+                         (["blur/thickness"] if has_blur else []) + (["trail/residue"] if has_trail else []) +
+                         ["frame"])
         stored_fields = f.attrs["fields"].split()
         if sorted(stored_fields) != sorted(wanted_fields) or not all(name in f for name in wanted_fields):
             problems.append(f"the fields stored ({' '.join(stored_fields)}) are not the ones the scenario's "
                             f"effects make ({' '.join(wanted_fields)})")
             return problems, notes
         stains = f["spread/stain"][:] if has_spread else np.zeros(frames.shape[:3], dtype=np.float32)
-        films = (check_particles(scenario, f, keys, problems, notes) if has_particles
-                 else np.zeros(frames.shape[:3], dtype=np.float32))
-        if has_blur:   # the film the blend lays over the tissue: the blurred one
-            films = check_blur(scenario, f, keys, films, problems, notes)
+        splats = (check_particles(scenario, f, keys, problems, notes) if has_particles
+                  else np.zeros(frames.shape[:3], dtype=np.float32))
+        films = check_blur(scenario, f, keys, splats, problems, notes) if has_blur else splats
+        residues = f["trail/residue"][:] if has_trail else np.zeros(frames.shape[:3], dtype=np.float32)
+    if has_trail:   # what a pixel keeps is at least its share of the film over it now
+        short = residues < np.float32(scenario["trail"]["residue"]) * splats * (1 - 1e-6)
+        if short.any():
+            problems.append(f"{short.sum()} pixels' residue is below trail.residue times the film over them")
     for i, k in enumerate(keys):
         t = (k + 1) / fps
         if abs(times[i] - t) > 1e-12:
@@ -175,8 +217,10 @@ def check_scene(root, golden, name, params):
         error = np.abs(stains[i] - expected_stain(scenario, t)).max() if has_spread else np.abs(stains[i]).max()
         if error > STAIN_TOLERANCE + STAIN_TOLERANCE_PER_CUT * len(scenario["cut"]):
             problems.append(f"key frame {k}: stain differs from the report's formula by {error:.3g}")
-    check_frames(keys, frames, stains, films, problems, notes,
-                 "blur/thickness" if has_blur else "splat/thickness")
+    optics = scenario.get("optics") or defaults(params, "optics")
+    depths = films.astype(np.float64) + stains * optics["stain_depth_mm"] + residues
+    check_frames(keys, frames, depths, films, scene_tissue(root, scenario), optics, "optics" in scenario,
+                 scenario["scene"], problems, notes)
     if has_spread:
         stained = (stains[-1] > 0.05).mean()
         if not 0.001 < stained < 0.9:

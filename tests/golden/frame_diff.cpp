@@ -6,7 +6,7 @@
 #include <cstring>
 #include <limits>
 
-#include "core/physics/blend.h"
+#include "core/runtime/image.h"
 #include "core/io/png_writer.h"
 
 namespace bleedsim::golden {

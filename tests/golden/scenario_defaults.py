@@ -12,7 +12,7 @@ import json
 import math
 import subprocess
 
-TABLES = ("scene", "spread", "particles", "blur", "haptics")
+TABLES = ("scene", "spread", "particles", "blur", "trail", "optics", "haptics")
 
 
 def load_params(bleedsim):

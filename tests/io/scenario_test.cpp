@@ -240,7 +240,7 @@ TEST(ScenarioBadInput, UnknownKeyFarFromAnyListsTheKnownOnes) {
 
 TEST(ScenarioBadInput, UnknownTopLevelTable) {
   EXPECT_TRUE(refused_at(kBase + "[lighting]\nlamps = 3\n", kEnd, "lighting",
-                         "unknown table (known here: scene tissue spread particles blur haptics cut output)"));
+                         "unknown table (known here: scene tissue spread particles blur trail optics haptics cut output)"));
   EXPECT_TRUE(refused_at(kBase + "[sprad]\n", kEnd, "sprad", "unknown table; did you mean 'spread'?"));
   EXPECT_TRUE(refused_at(kBase + "[particle]\n", kEnd, "particle", "unknown table; did you mean 'particles'?"));
   EXPECT_TRUE(refused_at(kBase + "[blurr]\n", kEnd, "blurr", "unknown table; did you mean 'blur'?"));
@@ -376,7 +376,7 @@ TEST(ScenarioBadInput, OutputFieldWithAnUnknownName) {
   EXPECT_TRUE(refused_at(kBase + "fields = [\n  \"spread/stain\",\n  \"spread/blood\",\n]\n", kEnd + 2,
                          "output.fields[1]",
                          "unknown field 'spread/blood' (known: spread/stain, particles/position, particles/velocity, particles/age, "
-                         "particles/accounting, splat/thickness, blur/thickness; the frame is always written)"));
+                         "particles/accounting, splat/thickness, blur/thickness, trail/residue; the frame is always written)"));
 }
 
 TEST(ScenarioBadInput, OutputFieldOfAnEffectTheSceneDoesNotDeclare) {

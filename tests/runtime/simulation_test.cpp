@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstring>
 
+#include "core/effects/blend_stage.h"
 #include "core/runtime/simulation.h"
 #include "tests/runtime/scenes_in_code.h"
 
@@ -54,16 +55,25 @@ TEST(Simulation, ACutFedAtRunTimeStainsFromItsStartOn) {
   EXPECT_NEAR(stain_at(sim, 8, 8), 0.3f, 1e-6f);
 }
 
-TEST(Simulation, TheFrameIsTheTissueWithGreenAndBlueTakenWhereItBleeds) {
+// A full stain is drawn as stain_depth_mm of blood in the tissue: in linear light each channel keeps
+// exp(−2·μ_c·depth) of the tissue's (docs/optics.md); far from the cut the tissue keeps its bytes.
+TEST(Simulation, TheFrameIsTheTissueUnderTheStainAsBlood) {
   const Scene scene = test::scene_in_code(true);
   Simulation sim(scene, kCpu);
   for (int k = 0; k < 30; ++k) sim.step();
   const std::vector<std::uint8_t> frame = sim.copy_field("frame");
   ASSERT_EQ(frame.size(), 64u * 48 * 4);
   const std::size_t centre = 4 * (24 * 64 + 32), corner = 0;
-  EXPECT_EQ(frame[centre + 0], scene.tissue.rgba[centre + 0]);  // red untouched
-  EXPECT_EQ(frame[centre + 1], 0);                               // full stain: no green
-  EXPECT_EQ(frame[centre + 2], 0);
+  const std::vector<float> tables = optics_tables();
+  const SrgbTables srgb{tables.data(), tables.data() + kSrgbBytes};
+  const BloodOptics blood = blood_optics(OpticsParams{});
+  for (int c = 0; c < 3; ++c) {
+    const double light = linear_from_srgb(srgb, scene.tissue.rgba[centre + c]) *
+                         std::exp(-2.0 * blood.absorption_per_mm[c] * blood.stain_depth_mm);
+    EXPECT_NEAR(frame[centre + c], srgb_from_linear(srgb, float(light)), 1) << c;  // the table's interpolation
+  }
+  EXPECT_LT(frame[centre + 1], scene.tissue.rgba[centre + 1]);  // the stain reads red: green and blue taken
+  EXPECT_EQ(frame[centre + 3], scene.tissue.rgba[centre + 3]);
   EXPECT_EQ(std::memcmp(&frame[corner], &scene.tissue.rgba[corner], 4), 0);  // far away: tissue
 }
 

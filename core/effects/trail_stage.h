@@ -1,0 +1,24 @@
+#pragma once
+#include <cstddef>
+
+#include "core/effects/stage.h"
+#include "core/physics/trail.h"
+
+namespace bleedsim {
+
+// (splat/thickness) => trail/residue
+// Each frame, in scenes with [trail]: the residue of the blood that ran over each pixel, drying.
+class TrailStage final : public Stage {
+ public:
+  TrailStage(const StageKind& kind, const Scene& scene, State& state, Backend& backend);
+  static std::size_t bytes_for(const Scene& scene);
+  void run(const Scene& scene, State& state, Backend& backend) override;
+
+ private:
+  TrailPixel work_{};
+};
+
+// One frame's drying: exp(−1 / (frame rate · drying_s)), in double, rounded once.
+float trail_decay_per_frame(const TrailParams& trail, double frame_rate_hz);
+
+}  // namespace bleedsim

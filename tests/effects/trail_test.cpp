@@ -1,0 +1,116 @@
+// Trails (core/physics/trail.h): where blood has run the tissue keeps a residue that dries as
+// exp(−t / drying_s), against that closed form; and only a scene with [trail] pays for it.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <vector>
+
+#include "core/effects/trail_stage.h"
+#include "core/runtime/simulation.h"
+#include "core/runtime/tissue.h"
+
+namespace bleedsim {
+namespace {
+
+const BackendChoice kCpu{BackendChoice::Want::cpu, 2};
+
+// One pixel under a film of h for a few frames, then bare: its residue is residue·h (the most the
+// film left), then that times decay per frame. decay is exp(−1/(f·τ)) rounded once to float (2⁻²⁴
+// relative) and each frame's product rounds once more: after n frames the residue is within
+// n·2⁻²³ of residue·h·exp(−n/(f·τ)), relative.
+TEST(TrailPixel, TheResidueDriesAsTheClosedFormSays) {
+  TrailParams trail;
+  trail.residue = 0.1;
+  trail.drying_s = 2.0;
+  const double fps = 30.0;
+  float film = 0.12f, residue = 0.0f;
+  const TrailPixel pixel{&film, &residue, float(trail.residue), trail_decay_per_frame(trail, fps), PixelGrid{1, 1}};
+  for (int k = 0; k < 5; ++k) pixel(0, 0);
+  EXPECT_EQ(residue, 0.1f * 0.12f);
+  film = 0.0f;
+  const double left = residue;
+  for (int n = 1; n <= 300; ++n) {
+    pixel(0, 0);
+    const double closed = left * std::exp(-n / (fps * trail.drying_s));
+    EXPECT_NEAR(residue, closed, n * std::ldexp(closed, -23)) << n;
+  }
+}
+
+// A thin film passing over a pixel that already holds a residue leaves the larger of the two: a
+// trail is not thickened by blood passing again, nor erased by a thinner stream.
+TEST(TrailPixel, KeepsTheLargerOfTheDriedResidueAndTheFilmsShare) {
+  float film = 0.01f, residue = 0.05f;
+  const TrailPixel pixel{&film, &residue, 0.5f, 0.9f, PixelGrid{1, 1}};
+  pixel(0, 0);
+  EXPECT_EQ(residue, 0.05f * 0.9f);  // 0.045 > 0.5 · 0.01
+  film = 0.2f;
+  pixel(0, 0);
+  EXPECT_EQ(residue, 0.5f * 0.2f);
+}
+
+// A drop slides down a mucosa without grip (pinning and yield 0) from a cut near the top: once it
+// has passed a pixel of its path, that pixel holds a residue (> 0) that dries by exactly one
+// frame's decay a frame, and after n frames is within n·2⁻²³ of exp(−n/(f·τ)) of what it was.
+TEST(TrailStage, WhereADropHasRunTheResidueDries) {
+  Scene scene;
+  scene.name = "trail";
+  scene.domain = Domain{40, 240, 2.0, 12.0};
+  scene.duration_s = 3.0;
+  scene.tissue = procedural_tissue(40, 240, 3);
+  scene.particles = ParticleParams{};
+  scene.particles->pinning_mm3_s2 = scene.particles->yield_mm2_s2 = 0.0;
+  scene.particles->capacity = 1024;
+  scene.trail = TrailParams{};
+  scene.trail->drying_s = 1.5;
+  Cut cut = scene.cut_at(1.0, 1.5, 0.0);
+  cut.bleed_s = 0.2;
+  scene.cuts.push_back(cut);
+  Simulation sim(scene, kCpu);
+  const auto field = [&](const char* name) {
+    const std::vector<std::uint8_t> bytes = sim.copy_field(name);
+    std::vector<float> v(bytes.size() / sizeof(float));
+    std::memcpy(v.data(), bytes.data(), bytes.size());
+    return v;
+  };
+  const float decay = trail_decay_per_frame(*scene.trail, scene.frame_rate_hz);
+  // The path's middle, 6 mm down: pixel (20, 120). Frame by frame: covered, then bare for good.
+  const std::size_t p = 120 * 40 + 20;
+  std::vector<float> film, residue;
+  while (sim.frames_done() < scene.frame_count()) {
+    sim.step();
+    film.push_back(field("splat/thickness")[p]);
+    residue.push_back(field("trail/residue")[p]);
+  }
+  std::size_t last_covered = 0;
+  for (std::size_t k = 0; k < film.size(); ++k)
+    if (film[k] > 0.0f) last_covered = k;
+  ASSERT_GT(last_covered, 0u) << "the drop never reached the pixel";
+  ASSERT_LT(last_covered + 30, film.size()) << "the drop had not passed a second before the end";
+  EXPECT_GT(residue[last_covered], 0.0f);
+  for (std::size_t k = last_covered + 1; k < film.size(); ++k) {
+    EXPECT_EQ(residue[k], residue[k - 1] * decay) << k;
+    const double n = double(k - last_covered);
+    const double closed = residue[last_covered] * std::exp(-n / (scene.frame_rate_hz * scene.trail->drying_s));
+    EXPECT_NEAR(residue[k], closed, n * std::ldexp(closed, -23)) << k;
+  }
+}
+
+// Only a scene with [trail] runs the trail stage and holds its field.
+TEST(TrailStage, ASceneWithoutTrailsHasNoneOfTheirCost) {
+  Scene scene;
+  scene.domain = Domain{16, 16, 4.0, 4.0};
+  scene.tissue = procedural_tissue(16, 16, 1);
+  scene.particles = ParticleParams{};
+  scene.particles->capacity = 64;
+  Simulation without(scene, kCpu);
+  scene.trail = TrailParams{};
+  Simulation with(scene, kCpu);
+  for (int k = 0; k < 3; ++k) without.step(), with.step();
+  EXPECT_EQ(without.backend().launches("trail"), 0u);
+  EXPECT_EQ(with.backend().launches("trail"), 3u);
+  EXPECT_EQ(with.backend().bytes_in_use() - without.backend().bytes_in_use(), 16u * 16 * sizeof(float));
+}
+
+}  // namespace
+}  // namespace bleedsim
