@@ -6,7 +6,7 @@
 // 1,048,576 particles; on the CPU reference at 1920×1080 with 65,536.
 //
 // The particles are input only (no physics runs): N particles of the default 0.2 mm diameter on a
-// hexagonal lattice at the bottom of the panel, touching, all alive (age 0, a lifetime of 10⁶ s),
+// hexagonal lattice at the bottom of the panel, touching, all alive (age 0, a lifetime as long as a scene may ask),
 // built on the host and uploaded once. The panel is sized so that they fill its lower 28 %: it is
 // 16:9, 480 × 270 mm for 1,048,576 particles (⌊W/d − ½⌋ = 2,399 per row, 438 rows, a pile 75.9 mm
 // high), scaled by √(N / 2²⁰) for other N (120 × 67.5 mm at 65,536: 599 per row, 110 rows). Its
@@ -84,13 +84,16 @@ Scene frame_scene(const Size& size, int n) {
   scene.seed = 1;
   scene.particles = ParticleParams{};
   scene.particles->capacity = n;
-  scene.particles->lifetime_s = 86400.0;  // a day (the most a scene may ask): every particle alive, unfaded
   scene.blur = BlurParams{};
   const double scale = std::sqrt(double(n) / kReferenceParticles);
   scene.domain.width_px = size.width;
   scene.domain.height_px = size.height;
   scene.domain.width_mm = kPanelWidthMm * scale;
   scene.domain.height_mm = kPanelHeightMm * scale;
+  // Every particle alive and unfaded: a day (the most a scene may ask), or 1e9 steps.
+  const ParticleParams& p = *scene.particles;
+  const double steps_per_s = scene.frame_rate_hz * particle_mechanics(p, scene.domain, scene.frame_rate_hz).substeps;
+  scene.particles->lifetime_s = std::min(86400.0, 1.0e9 / steps_per_s);
   return scene;
 }
 

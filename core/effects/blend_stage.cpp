@@ -27,7 +27,18 @@ std::vector<float> optics_tables() {
   for (int b = 0; b < kSrgbBytes; ++b) t.push_back(float(linear_from_code(b / 255.0)));
   for (int k = 0; k + 1 < kSrgbBytes; ++k) t.push_back(float(linear_from_code((k + 0.5) / 255.0)));
   for (int k = 0; k < kTransmissionEntries; ++k) t.push_back(float(std::exp(-double(k) / kTransmissionStepsPerUnit)));
+  const float* boundaries = t.data() + kSrgbBytes;
+  int reached = 0;
+  for (int k = 0; k < kSrgbBuckets; ++k) {
+    const float start = float(k) / float(kSrgbBuckets);  // exact
+    while (reached < kSrgbBytes - 1 && boundaries[reached] <= start) ++reached;
+    t.push_back(float(reached));
+  }
   return t;
+}
+
+SrgbTables srgb_tables(const float* tables) {
+  return {tables, tables + kSrgbBytes, tables + 2 * kSrgbBytes - 1 + kTransmissionEntries};
 }
 
 BloodOptics blood_optics(const OpticsParams& o) {
@@ -49,7 +60,7 @@ BlendPixel blend_work(const Scene& scene, const float* tables, const std::uint8_
                     film_mm,
                     residue_mm,
                     tables + 2 * kSrgbBytes - 1,
-                    SrgbTables{tables, tables + kSrgbBytes},
+                    srgb_tables(tables),
                     blood_optics(optics),
                     scene.optics ? 1 : 0,
                     headlight(optics, scene.domain),

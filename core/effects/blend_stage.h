@@ -33,8 +33,11 @@ const char* blend_residue_field(const Scene& scene);
 
 // The tables the blend reads, one after another, made on the host in double and rounded once to
 // float: sRGB's 256 bytes in linear light; the 255 boundaries between them (the linear value of
-// code (k + ½)/255); exp(−k / kTransmissionStepsPerUnit) for the Beer–Lambert transmission.
-constexpr std::size_t kOpticsTableFloats = kSrgbBytes + (kSrgbBytes - 1) + kTransmissionEntries;
+// code (k + ½)/255); exp(−k / kTransmissionStepsPerUnit) for the Beer–Lambert transmission; the
+// encoding's bucket starts (SrgbTables).
+constexpr std::size_t kOpticsTableFloats = kSrgbBytes + (kSrgbBytes - 1) + kTransmissionEntries + kSrgbBuckets;
+// The sRGB tables within optics_tables() at `tables`.
+SrgbTables srgb_tables(const float* tables);
 std::vector<float> optics_tables();
 
 // The blood as an absorber, and the headlight, for a scene's optics (the defaults without [optics]).

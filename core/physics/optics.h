@@ -26,26 +26,27 @@ BLEEDSIM_HD inline float transmitted(const float* table, float optical_depth) {
 
 // sRGB bytes to linear light and back (IEC 61966-2-1). Decoding is a table of the 256 bytes;
 // encoding rounds to the nearest byte by counting the byte boundaries a value reaches: boundary k
-// is the linear value of the code (k + ½)/255, so the byte of v is the number of boundaries ≤ v, found
-// by a binary search of comparisons alone. encode(decode(b)) = b for every byte.
+// is the linear value of the code (k + ½)/255, so the byte of v is the number of boundaries ≤ v.
+// A table of the count at the start of each of kSrgbBuckets equal steps of [0, 1) gives a start no
+// higher than the answer (v ≥ its step's start, exactly: v · 4096 and its floor are exact), and a
+// walk of comparisons up the boundaries finishes it: at most one or two, since no step holds more
+// than one boundary. encode(decode(b)) = b for every byte.
 constexpr int kSrgbBytes = 256;
+constexpr int kSrgbBuckets = 4096;
 struct SrgbTables {
-  const float* to_linear;   // kSrgbBytes
-  const float* boundaries;  // kSrgbBytes − 1, increasing
+  const float* to_linear;     // kSrgbBytes
+  const float* boundaries;    // kSrgbBytes − 1, increasing
+  const float* bucket_start;  // kSrgbBuckets: boundaries ≤ k / kSrgbBuckets, as floats (whole numbers)
 };
 
 BLEEDSIM_HD inline float linear_from_srgb(const SrgbTables& t, std::uint8_t byte) { return t.to_linear[byte]; }
 
 BLEEDSIM_HD inline std::uint8_t srgb_from_linear(const SrgbTables& t, float v) {
-  int low = 0, high = kSrgbBytes - 1;  // the byte lies in [low, high]
-  while (low < high) {
-    const int middle = (low + high + 1) / 2;
-    if (v >= t.boundaries[middle - 1])
-      low = middle;
-    else
-      high = middle - 1;
-  }
-  return std::uint8_t(low);
+  if (!(v > 0.0f)) return 0;  // also not a number
+  if (v >= 1.0f) return kSrgbBytes - 1;
+  int byte = int(t.bucket_start[int(v * float(kSrgbBuckets))]);
+  while (byte < kSrgbBytes - 1 && v >= t.boundaries[byte]) ++byte;
+  return std::uint8_t(byte);
 }
 
 // An integer power by repeated squaring: the same multiplications, in the same order, everywhere.

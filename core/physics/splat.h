@@ -129,7 +129,9 @@ BLEEDSIM_HD inline void splat_particle(const SplatArgs& a, int slot, Deposit dep
     return;
   }
   for_each_weight(a.splat, a.grid, f, [&](std::size_t pixel, std::uint64_t w) {
-    const std::uint64_t units = share_of(blood, w, total);
+    // A pixel holding all the weight takes all the blood: share_of's own answer, without its
+    // 64-bit division (slow on the GPU), on panels whose pixels are as coarse as the splat.
+    const std::uint64_t units = w == total ? blood : share_of(blood, w, total);
     if (units != 0) deposit(pixel, units);
   });
 }

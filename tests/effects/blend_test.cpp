@@ -29,7 +29,7 @@ TEST(ByteConversion, ClampsOutOfRangeAndNotANumber) {
 // The blend's tables in host memory, and its work over host arrays (blend_work: what the stage runs).
 struct Compositor {
   std::vector<float> tables = optics_tables();
-  SrgbTables srgb{tables.data(), tables.data() + kSrgbBytes};
+  SrgbTables srgb = srgb_tables(tables.data());
   const float* boundaries = tables.data() + kSrgbBytes;
 
   BlendPixel pixel(const std::uint8_t* tissue, const float* stain, const float* film, const float* residue,
@@ -55,6 +55,22 @@ TEST(Srgb, EveryByteSurvivesDecodingAndEncoding) {
 
 // Rounding to the nearest byte: a linear value just below a boundary stays, at it goes up.
 TEST(Srgb, EncodesToTheNearestByte) {
+  // No step of the bucket table holds more than one boundary, so the walk is short; and the count
+  // is right at the buckets' own starts.
+  const Compositor c;
+  for (int k = 0; k < kSrgbBuckets; ++k) {
+    const float start = float(k) / float(kSrgbBuckets);
+    int count = 0;
+    while (count < 255 && c.boundaries[count] <= start) ++count;
+    EXPECT_EQ(c.srgb.bucket_start[k], float(count)) << k;
+    EXPECT_EQ(srgb_from_linear(c.srgb, start), count) << k;
+    if (k > 0) {
+      EXPECT_LE(c.srgb.bucket_start[k] - c.srgb.bucket_start[k - 1], 1.0f) << k;
+    }
+  }
+}
+
+TEST(Srgb, EncodesBoundariesToTheByteAbove) {
   const Compositor c;
   for (int k = 0; k < 255; ++k) {
     const float boundary = c.boundaries[k];

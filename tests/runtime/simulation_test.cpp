@@ -65,7 +65,7 @@ TEST(Simulation, TheFrameIsTheTissueUnderTheStainAsBlood) {
   ASSERT_EQ(frame.size(), 64u * 48 * 4);
   const std::size_t centre = 4 * (24 * 64 + 32), corner = 0;
   const std::vector<float> tables = optics_tables();
-  const SrgbTables srgb{tables.data(), tables.data() + kSrgbBytes};
+  const SrgbTables srgb = srgb_tables(tables.data());
   const BloodOptics blood = blood_optics(OpticsParams{});
   for (int c = 0; c < 3; ++c) {
     const double light = linear_from_srgb(srgb, scene.tissue.rgba[centre + c]) *
