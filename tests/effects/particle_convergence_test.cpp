@@ -32,6 +32,7 @@
 
 #include "core/effects/particle_model.h"
 #include "core/runtime/simulation.h"
+#include "tests/runtime/field_values.h"
 #include "core/runtime/tissue.h"
 #include "core/study/study.h"
 
@@ -61,13 +62,6 @@ struct Outcome {
   double pile_height = 0;    // the blood's centroid above the floor, mm
 };
 
-template <class T>
-std::vector<T> field(const Simulation& sim, const char* name) {
-  const std::vector<std::uint8_t> bytes = sim.copy_field(name);
-  std::vector<T> values(bytes.size() / sizeof(T));
-  std::memcpy(values.data(), bytes.data(), values.size() * sizeof(T));
-  return values;
-}
 
 Outcome run(const Scene& scene) {
   Simulation sim(scene, BackendChoice{BackendChoice::Want::cpu, 2});
@@ -76,14 +70,14 @@ Outcome run(const Scene& scene) {
   const Domain& d = scene.domain;
   const int bx = int(std::lround(d.width_mm / kBlockMm)), by = int(std::lround(d.height_mm / kBlockMm));
   const int px = d.width_px / bx, py = d.height_px / by;
-  const std::vector<float> film = field<float>(sim, "splat/thickness");
+  const std::vector<float> film = test::field_values<float>(sim, "splat/thickness");
   out.film.assign(std::size_t(bx * by), 0.0);
   for (int y = 0; y < d.height_px; ++y)
     for (int x = 0; x < d.width_px; ++x)
       out.film[std::size_t((y / py) * bx + x / px)] += film[std::size_t(y * d.width_px + x)] / (px * py);
   const ParticleModel m = make_particle_model(scene);
-  const std::vector<float> position = field<float>(sim, "particles/position");
-  const std::vector<std::uint32_t> age = field<std::uint32_t>(sim, "particles/age");
+  const std::vector<float> position = test::field_values<float>(sim, "particles/position");
+  const std::vector<std::uint32_t> age = test::field_values<std::uint32_t>(sim, "particles/age");
   double sum = 0;
   int n = 0;
   for (std::size_t s = 0; s < age.size(); ++s)

@@ -43,6 +43,7 @@
 #include "core/effects/particle_model.h"
 #include "core/io/scenario.h"
 #include "core/runtime/simulation.h"
+#include "tests/runtime/field_values.h"
 #include "tests/test_paths.h"
 
 namespace bleedsim {
@@ -63,13 +64,6 @@ std::string read_text(const std::string& path) {
   return text.str();
 }
 
-template <class T>
-std::vector<T> copy_as(const Simulation& sim, const char* name) {
-  const std::vector<std::uint8_t> bytes = sim.copy_field(name);
-  std::vector<T> values(bytes.size() / sizeof(T));
-  std::memcpy(values.data(), bytes.data(), values.size() * sizeof(T));
-  return values;
-}
 
 // One frame's particles as the library reports them.
 struct Particles {
@@ -79,10 +73,10 @@ struct Particles {
   ParticleCounts counts;
 
   explicit Particles(const Simulation& sim)
-      : position(copy_as<float>(sim, "particles/position")),
-        velocity(copy_as<float>(sim, "particles/velocity")),
-        age(copy_as<std::uint32_t>(sim, "particles/age")) {
-    const std::vector<std::uint64_t> c = copy_as<std::uint64_t>(sim, "particles/accounting");
+      : position(test::field_values<float>(sim, "particles/position")),
+        velocity(test::field_values<float>(sim, "particles/velocity")),
+        age(test::field_values<std::uint32_t>(sim, "particles/age")) {
+    const std::vector<std::uint64_t> c = test::field_values<std::uint64_t>(sim, "particles/accounting");
     counts = {c.at(0), c.at(1), c.at(2), c.at(3)};
   }
   int slots() const { return int(age.size()); }

@@ -3,12 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <cstring>
 #include <vector>
 
 #include "core/effects/trail_stage.h"
 #include "core/runtime/simulation.h"
 #include "core/runtime/tissue.h"
+#include "tests/runtime/field_values.h"
 
 namespace bleedsim {
 namespace {
@@ -67,20 +67,14 @@ TEST(TrailStage, WhereADropHasRunTheResidueDries) {
   cut.bleed_s = 0.2;
   scene.cuts.push_back(cut);
   Simulation sim(scene, kCpu);
-  const auto field = [&](const char* name) {
-    const std::vector<std::uint8_t> bytes = sim.copy_field(name);
-    std::vector<float> v(bytes.size() / sizeof(float));
-    std::memcpy(v.data(), bytes.data(), bytes.size());
-    return v;
-  };
   const float decay = trail_decay_per_frame(*scene.trail, scene.frame_rate_hz);
   // The path's middle, 6 mm down: pixel (20, 120). Frame by frame: covered, then bare for good.
   const std::size_t p = 120 * 40 + 20;
   std::vector<float> film, residue;
   while (sim.frames_done() < scene.frame_count()) {
     sim.step();
-    film.push_back(field("splat/thickness")[p]);
-    residue.push_back(field("trail/residue")[p]);
+    film.push_back(test::field_values<float>(sim, "splat/thickness")[p]);
+    residue.push_back(test::field_values<float>(sim, "trail/residue")[p]);
   }
   std::size_t last_covered = 0;
   for (std::size_t k = 0; k < film.size(); ++k)
