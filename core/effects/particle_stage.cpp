@@ -54,7 +54,7 @@ std::size_t ParticleStage::bytes_for(const Scene& scene) {
   const std::size_t n = std::size_t(scene.particles->capacity);
   const std::size_t fields = n * (2 * sizeof(float) + 2 * sizeof(float) + sizeof(std::uint32_t)) +
                              sizeof(ParticleCounts);
-  return fields + particle_scratch_bytes(particle_cell_count(scene), int(n), sort_scratch_bound(n)) +
+  return fields + particle_scratch_bytes(particle_cell_count(scene).to<std::size_t>(), int(n), sort_scratch_bound(n)) +
          std::max(kInitialEmitters, scene.cuts.size()) * sizeof(Emitter);
 }
 
