@@ -7,7 +7,7 @@
 namespace bleedsim {
 namespace {
 
-std::size_t rgba_bytes(const Scene& scene) { return std::size_t(scene.domain.pixel_count()) * 4; }
+std::size_t rgba_bytes(const Scene& scene) { return scene.domain.pixels().to<std::size_t>() * 4; }
 
 std::size_t transmission_bytes(const Scene& scene) {
   return blend_film_field(scene) ? kTransmissionEntries * sizeof(float) : 0;
@@ -44,7 +44,9 @@ BlendStage::BlendStage(const StageKind& kind, const Scene& scene, State& state, 
   backend.upload(transmission_.data(), table, sizeof table);
 }
 
-std::size_t BlendStage::bytes_for(const Scene& scene) { return 2 * rgba_bytes(scene) + transmission_bytes(scene); }
+MemoryParts BlendStage::memory_for(const Scene& scene) {
+  return {scene.domain.memory(2 * 4), {"scene.width_px", "the blend's transmission table", transmission_bytes(scene)}};
+}
 
 void BlendStage::run(const Scene&, State&, Backend& backend) { launch(backend, work_); }
 

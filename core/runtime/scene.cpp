@@ -45,6 +45,11 @@ ParamProblem frames_countable(const Scene& scene, const Scene&) {
 
 }  // namespace
 
+MemoryPart Domain::memory(Count bytes_per_pixel) const {
+  return {"scene.width_px", "the " + std::to_string(width_px) + " x " + std::to_string(height_px) + " px panel",
+          pixels() * bytes_per_pixel};
+}
+
 PixelGrid Domain::grid() const {
   return PixelGrid{width_px, height_px, static_cast<float>(width_mm / width_px),
                    static_cast<float>(height_mm / height_px)};
@@ -102,7 +107,7 @@ ParamProblem scene_problem(const Scene& scene) {
   if (ParamProblem problem = check_params(scene_table(), scene, scene)) return problem;
   const Domain& d = scene.domain;
   if (scene.tissue.width != d.width_px || scene.tissue.height != d.height_px ||
-      scene.tissue.rgba.size() != std::size_t(d.pixel_count()) * 4)
+      Count(scene.tissue.rgba.size()) != d.pixels() * 4)
     return {"tissue", "must be a width_px × height_px RGBA8 image"};
   for (std::size_t i = 0; i < scene.cuts.size(); ++i)
     if (ParamProblem problem = check_params(cut_table(), scene.cuts[i], scene, "cut[" + std::to_string(i) + "]"))

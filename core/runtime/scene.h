@@ -14,8 +14,10 @@
 #include "core/haptics/haptic_params.h"
 #include "core/haptics/trace.h"
 #include "core/physics/pixel_grid.h"
+#include "core/runtime/count.h"
 #include "core/runtime/cut.h"
 #include "core/runtime/image.h"
+#include "core/runtime/memory.h"
 #include "core/runtime/params.h"
 
 namespace bleedsim {
@@ -28,7 +30,9 @@ struct Domain {
   double height_mm = 0.0;
 
   PixelGrid grid() const;
-  std::int64_t pixel_count() const { return std::int64_t{width_px} * height_px; }
+  Count pixels() const { return Count(width_px) * Count(height_px); }
+  // `bytes_per_pixel` over the whole panel: memory its size, scene.width_px × height_px, sets.
+  MemoryPart memory(Count bytes_per_pixel) const;
 };
 
 // The most frames a run may have: frame_count() is an int, and counters derived from it stay exact.

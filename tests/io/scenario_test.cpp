@@ -456,7 +456,7 @@ TEST(LoadScenario, LoadsEveryScenarioInTheRepository) {
       EXPECT_EQ(scene.tissue.width, scene.domain.width_px);
       EXPECT_EQ(scene.tissue.height, scene.domain.height_px);
       EXPECT_FALSE(scene.tissue.rgba.empty());
-      EXPECT_EQ(scene.tissue.rgba.size(), std::size_t(scene.domain.pixel_count()) * 4);
+      EXPECT_EQ(scene.tissue.rgba.size(), scene.domain.pixels().to<std::size_t>() * 4);
     } catch (const InputError& e) {
       ADD_FAILURE() << e.what();
     }

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -226,6 +227,60 @@ TEST_F(LoadTissuePng, RefusesSizesThatAreNotPositive) {
   const std::string path = write_png("pattern.png", 2, 2, 4, k2x2);
   EXPECT_THROW(load_tissue_png(path, 0, 4, where_, key_), std::invalid_argument);
   EXPECT_THROW(load_tissue_png(path, 4, -1, where_, key_), std::invalid_argument);
+}
+
+
+// ---- Limits (issue 13, item 5): a texture's size is known from its header, before decoding ------
+
+// A PNG signature and an IHDR chunk stating width x height (8-bit RGBA), and nothing after: enough
+// for the header, not for stb to decode.
+std::string png_header(std::uint32_t width, std::uint32_t height) {
+  std::string bytes = std::string("\x89PNG\r\n\x1a\n", 8) + std::string("\0\0\0\x0dIHDR", 8);
+  for (const std::uint32_t v : {width, height})
+    for (int shift = 24; shift >= 0; shift -= 8) bytes += char((v >> shift) & 0xff);
+  return bytes + std::string("\x08\x06\0\0\0", 5);
+}
+
+TEST_F(LoadTissuePng, RefusesATexturePastTheCapFromItsHeaderAlone) {
+  const std::string path = (dir_ / "huge.png").string();
+  std::ofstream(path, std::ios::binary) << png_header(20000, 300);
+  try {
+    load_tissue_png(path, 64, 48, where_, key_);
+    FAIL() << "a 20000 px wide texture was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "scenarios/x.toml:12:11: tissue.texture: texture '" + path +
+                                         "' is 20000 x 300 px; a texture may be at most 16384 px on a side (it is "
+                                         "resampled to the panel anyway)");
+  }
+  EXPECT_THROW(read_tissue_png_header(path, where_, key_), InputError) << "bleedsim validate reads only the header";
+}
+
+TEST_F(LoadTissuePng, ReadsTheHeaderAloneAndCountsWhatDecodingTakes) {
+  const std::string path = (dir_ / "header-only.png").string();
+  std::ofstream(path, std::ios::binary) << png_header(1000, 500);
+  const TextureHeader header = read_tissue_png_header(path, where_, key_);
+  EXPECT_EQ(header.width, 1000);
+  EXPECT_EQ(header.height, 500);
+  EXPECT_EQ(header.file_bytes, 29u);
+  // The file, twice the inflated rows (2 · 500 · (1 + 8 · 1000)), the decoded 16-bit RGBA and the
+  // 8-bit copy (12 bytes a pixel).
+  EXPECT_EQ(texture_memory(header, key_).bytes, Count(29 + 2 * 500 * 8001 + 12 * 1000 * 500));
+  EXPECT_EQ(texture_memory(header, key_).key, key_);
+}
+
+TEST_F(LoadTissuePng, RefusesToDecodeWhatDoesNotFitTheRoom) {
+  const std::string path = write_png("pattern.png", 2, 2, 4, k2x2);
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes(std::istreambuf_iterator<char>(in), {});
+  EXPECT_EQ(decode_tissue_png(bytes, path, 2, 2, where_, key_).rgba, k2x2);
+  try {
+    decode_tissue_png(bytes, path, 2, 2, where_, key_, 100);
+    FAIL() << "decoded in 100 bytes";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), key_);
+    EXPECT_NE(std::string(e.what()).find("needs"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("but only 100 B is available"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
