@@ -43,6 +43,10 @@ const ParamTable<TissueFile>& tissue_table() {
 ParamProblem resolve_output(OutputSpec& out, const Written& written, const Scene& scene) {
   if (!written.has("dir")) out.dir = "out/" + scene.name;
   if (out.dir.empty()) return {"dir", "must not be empty"};
+  for (const fs::path& part : fs::path(out.dir))
+    if (part.string().size() > kMaxFileName)
+      return {"dir", "holds a name of " + std::to_string(part.string().size()) + " characters; a file system holds " +
+                         "at most " + std::to_string(kMaxFileName)};
   for (std::size_t i = 0; i < out.fields.size(); ++i) {
     const std::string key = "fields[" + std::to_string(i) + "]";
     const std::string& name = out.fields[i];

@@ -31,6 +31,9 @@ std::string name_from_file(const std::string& path) {
 
 ParamProblem name_a_folder(Scene& scene, const Written& written, const Scene&) {
   if (!written.has("name")) scene.name = name_from_file(written.file);
+  if (scene.name.size() > kMaxFileName)
+    return {"name", "is " + std::to_string(scene.name.size()) + " characters long; a folder's name may be at most " +
+                        std::to_string(kMaxFileName) + " (it names the output folder)"};
   if (is_folder_name(scene.name)) return {};
   return {"name", "'" + scene.name + "' must start with a letter or digit and hold only letters, digits, "
                                      "'.', '_' and '-' (it names the output folder)"};

@@ -133,6 +133,40 @@ TEST_F(BadInput, UnwritableOutputPathFromTheScenario) {
   EXPECT_FALSE(fs::exists(dir_ / "a-file" / "out"));
 }
 
+// Issue 13, item 3: a folder name too long for the file system exited 2 and left the parent folder
+// it had made on the way.
+TEST_F(BadInput, AnOutputPathTooLongLeavesNoFolderItMadeBehind) {
+  out_ = dir_ / "newparent" / std::string(300, 'b');
+  expect_refused(scenario_with("", ""), {"--out: cannot create output folder", "File name too long"});
+  EXPECT_FALSE(fs::exists(dir_ / "newparent"));
+}
+
+// Issue 13, item 3: a scene name too long to name a folder passed validate, then run exited 2
+// naming output.dir (which the file did not write), with no line, and left out/ behind.
+TEST_F(BadInput, ASceneNameTooLongForAFolderIsRefusedAtItsKey) {
+  const std::string text = "[scene]\nname = \"" + std::string(300, 'a') + "\"\n" + scenario_with("[scene]\n", "");
+  const fs::path file = dir_ / "bad.toml";
+  write_text(file, text);
+  const std::string message = "bad.toml:2:8: scene.name: is 300 characters long; a folder's name may be at most 255";
+  const CliResult validate = run_cli("validate '" + file.string() + "'");
+  EXPECT_EQ(validate.exit_code, 2) << validate.output;
+  EXPECT_NE(validate.output.find(message), std::string::npos) << validate.output;
+  const CliResult run = run_shell("cd '" + dir_.string() + "' && '" + cli_path() + "' run bad.toml --backend cpu");
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_NE(run.output.find(message), std::string::npos) << run.output;
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
+// The folder a scene's name makes, out/<name>, is named by scene.name when it cannot be made.
+TEST_F(BadInput, ADefaultOutputFolderThatCannotBeMadeIsPlacedAtTheSceneName) {
+  write_text(dir_ / "out", "a file where the folder out/ would go");
+  const fs::path file = dir_ / "bad.toml";
+  write_text(file, "[scene]\nname = \"blocked\"\n" + scenario_with("[scene]\n", ""));
+  const CliResult run = run_shell("cd '" + dir_.string() + "' && '" + cli_path() + "' run bad.toml --backend cpu");
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_NE(run.output.find("bad.toml:2:8: scene.name: cannot "), std::string::npos) << run.output;
+}
+
 TEST_F(BadInput, UnknownBackendOrNegativePngInterval) {
   const std::string file = (fs::path(source_dir()) / "scenarios/golden/spread-single.toml").string();
   expect_cli_refused("run '" + file + "' --backend gpu --out '" + out_.string() + "'", {"--backend", "gpu"});

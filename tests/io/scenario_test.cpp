@@ -394,6 +394,13 @@ TEST(ScenarioBadInput, EmptyOutputDir) {
   EXPECT_TRUE(refused_at(kBase + "dir = \"\"\n", kEnd, "output.dir", "must not be empty"));
 }
 
+// Issue 13, item 3: a path the file system cannot hold is refused by validate, at its key.
+TEST(ScenarioBadInput, OutputDirWithANameTooLongForAFileSystem) {
+  EXPECT_TRUE(refused_at(kBase + "dir = \"out/" + std::string(256, 'x') + "\"\n", kEnd, "output.dir",
+                         "holds a name of 256 characters; a file system holds at most 255"));
+  EXPECT_NO_THROW(parse_scenario(kBase + "dir = \"out/" + std::string(255, 'x') + "\"\n", kPath));
+}
+
 TEST(ScenarioBadInput, MissingTexture) {
   const ScratchFolder scratch;
   const std::string texture = (scratch.path() / "nowhere.png").string();
