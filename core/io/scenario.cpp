@@ -1,6 +1,6 @@
 #include "core/io/scenario.h"
 
-#include <toml++/toml.h>
+#include "core/io/toml.h"
 
 #include <algorithm>
 #include <cstdint>

@@ -43,7 +43,7 @@ struct TextShape {
 TextShape shape_of(std::istream& in) {
   TextShape shape;
   std::uint64_t current = 0;
-  std::vector<char> buffer(1 << 20);
+  std::vector<char> buffer(1 << 16);
   while (in.read(buffer.data(), std::streamsize(buffer.size())) || in.gcount() > 0) {
     for (std::streamsize i = 0; i < in.gcount(); ++i) {
       if (buffer[std::size_t(i)] != '\n') {
@@ -245,7 +245,8 @@ class Parser {
       // A near miss among the other keys ("rate", "Frame") is probably a misspelling.
       const std::string* nearest = nullptr;
       std::size_t best = 4;
-      for (const auto& [key, where] : meta_lines_) {
+      for (const auto& entry : meta_lines_) {
+        const std::string& key = entry.first;  // a structured binding cannot be captured in C++17 (clang refuses)
         if (std::any_of(std::begin(kRequired), std::end(kRequired), [&](const char* r) { return key == r; })) continue;
         if (const std::size_t d = edit_distance(lower(key), required); d < best) best = d, nearest = &key;
       }

@@ -401,6 +401,20 @@ TEST(ScenarioBadInput, OutputDirWithANameTooLongForAFileSystem) {
   EXPECT_NO_THROW(parse_scenario(kBase + "dir = \"out/" + std::string(255, 'x') + "\"\n", kPath));
 }
 
+// A letter outside a string that toml++ 3.3.0 took into __builtin_unreachable() (core/io/toml.h):
+// it is refused as a syntax error, with its place (the sanitizer build stops on the old behaviour).
+TEST(ScenarioBadInput, NonAsciiCharactersOutsideStringsAreSyntaxErrors) {
+  for (const std::string& text : {kBase + "a = 1\xc3\xa9\n", kBase + "a\xc2\xb5 = 1\n", kBase + "\xc3\xa9\n"}) {
+    try {
+      parse_scenario(text, kPath);
+      ADD_FAILURE() << "accepted " << text;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.where().line, kEnd) << e.what();
+      EXPECT_EQ(e.key(), "") << e.what();
+    }
+  }
+}
+
 TEST(ScenarioBadInput, MissingTexture) {
   const ScratchFolder scratch;
   const std::string texture = (scratch.path() / "nowhere.png").string();
