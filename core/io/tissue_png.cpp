@@ -1,6 +1,8 @@
 #include "core/io/tissue_png.h"
 
 #include <stb/stb_image.h>
+#define ZLIB_CONST  // next_in points at bytes zlib only reads
+#include <zlib.h>
 
 #include <algorithm>
 #include <cerrno>
@@ -9,7 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
-#include <sstream>
+#include <new>
 #include <stdexcept>
 #include <vector>
 
@@ -104,6 +106,58 @@ TextureHeader parse_header(const unsigned char* bytes, std::size_t size, const s
   return {int(width), int(height), size};
 }
 
+// stb_image trusts a PNG further than its header: it allocates an IDAT chunk's stated length before
+// reading it, and inflates the image data into a buffer it doubles for as long as the stream goes
+// on. So, before stb sees the file, every chunk must lie inside it, and the image data must inflate
+// to no more than the rows the header states (counted by texture_memory()): a 400-byte file that
+// claimed a 2 GB chunk made stb ask for 2 GB (found by fuzz/tissue_png_fuzzer), and a small file of
+// compressed zeros can inflate a thousandfold.
+void check_chunks(const unsigned char* bytes, std::size_t size, const TextureHeader& header, const std::string& name,
+                  const SourcePlace& where, const std::string& key) {
+  const std::string texture = "texture '" + name + "'";
+  const Count most = Count(2) * Count(header.height) * (Count(header.width) * 8 + 1);
+  z_stream inflater{};
+  bool inflating = false, stream_checked = false;
+  std::uint64_t inflated = 0;
+  unsigned char scratch[1 << 14];
+  for (std::size_t at = sizeof kSignature; at + 12 <= size;) {
+    const std::uint32_t length = big_endian(bytes + at);
+    const std::string type(reinterpret_cast<const char*>(bytes + at + 4), 4);
+    if (length > size - at - 12) {
+      if (inflating) inflateEnd(&inflater);
+      throw InputError(where, key, "cannot decode " + texture + " as a PNG: a chunk claims " + std::to_string(length) +
+                                       " bytes, more than the file holds after it");
+    }
+    if (type == "CgBI") stream_checked = true;  // Apple's raw deflate: left to stb, whose size it bounds
+    if (type == "IDAT" && !stream_checked) {
+      if (!inflating && inflateInit(&inflater) != Z_OK) throw std::bad_alloc();
+      inflating = true;
+      inflater.next_in = bytes + at + 8;
+      inflater.avail_in = length;
+      while (inflater.avail_in > 0) {
+        inflater.next_out = scratch;
+        inflater.avail_out = sizeof scratch;
+        const int status = inflate(&inflater, Z_NO_FLUSH);
+        inflated += sizeof scratch - inflater.avail_out;
+        if (Count(inflated) > most) {
+          inflateEnd(&inflater);
+          throw InputError(where, key, "cannot decode " + texture + " as a PNG: its image data inflates to more " +
+                                           "than the " + std::to_string(header.width) + " x " +
+                                           std::to_string(header.height) + " px its header states");
+        }
+        // The stream's end, or an error stb will report: nothing more to count.
+        if (status != Z_OK) {
+          stream_checked = true;
+          break;
+        }
+      }
+    }
+    if (type == "IEND") break;
+    at += 12 + std::size_t(length);
+  }
+  if (inflating) inflateEnd(&inflater);
+}
+
 // "cannot read texture 'x': <why>", for a file that cannot be opened or read.
 InputError unreadable(const std::string& path, const SourcePlace& where, const std::string& key, int error) {
   return InputError(where, key, "cannot read texture '" + path + "': " + std::strerror(error ? error : EIO));
@@ -148,11 +202,12 @@ Image load_tissue_png(const std::string& path, int width, int height, const Sour
                                 std::to_string(width) + " x " + std::to_string(height) + ")");
   }
   // The header first, so that a file too large to decode is refused before it is read.
-  read_tissue_png_header(path, where, key);
+  const TextureHeader header = read_tissue_png_header(path, where, key);
   std::ifstream file = open_texture(path, where, key);
-  std::ostringstream bytes;
-  if (!(bytes << file.rdbuf())) throw unreadable(path, where, key, errno);
-  return decode_tissue_png(bytes.str(), path, width, height, where, key);
+  std::string bytes(header.file_bytes, '\0');
+  errno = 0;
+  if (!file.read(bytes.data(), std::streamsize(bytes.size()))) throw unreadable(path, where, key, errno);
+  return decode_tissue_png(bytes, path, width, height, where, key);
 }
 
 Image decode_tissue_png(const std::string& bytes, const std::string& name, int width, int height,
@@ -169,6 +224,7 @@ Image decode_tissue_png(const std::string& bytes, const std::string& name, int w
                                      " of host memory, but only " + human_bytes(double(room)) + " is available");
   if (bytes.size() > std::size_t(std::numeric_limits<int>::max()))
     throw InputError(where, key, "cannot decode texture '" + name + "' as a PNG: the file is larger than 2 GiB");
+  check_chunks(data, bytes.size(), header, name, where, key);
   int src_w = 0;
   int src_h = 0;
   int channels_in_file = 0;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <stb/stb_image_write.h>
 #include <unistd.h>
+#include <zlib.h>
 
 #include <cerrno>
 #include <cstdint>
@@ -266,6 +267,50 @@ TEST_F(LoadTissuePng, ReadsTheHeaderAloneAndCountsWhatDecodingTakes) {
   // 8-bit copy (12 bytes a pixel).
   EXPECT_EQ(texture_memory(header, key_).bytes, Count(29 + 2 * 500 * 8001 + 12 * 1000 * 500));
   EXPECT_EQ(texture_memory(header, key_).key, key_);
+}
+
+// A PNG chunk: its length, type, data and CRC (stb does not check the CRC; zlib's is correct here).
+std::string chunk(const std::string& type, const std::string& data) {
+  std::string out;
+  const auto word = [&out](std::uint32_t v) {
+    for (int shift = 24; shift >= 0; shift -= 8) out += char((v >> shift) & 0xff);
+  };
+  word(std::uint32_t(data.size()));
+  out += type + data;
+  word(std::uint32_t(crc32(crc32(0, reinterpret_cast<const Bytef*>(type.data()), 4),
+                           reinterpret_cast<const Bytef*>(data.data()), uInt(data.size()))));
+  return out;
+}
+
+// stb trusted a PNG past its header: it allocated an IDAT chunk's stated length before reading it (a
+// 426-byte file made it ask for 2 GiB; fuzz/tissue_png_fuzzer), and inflates image data for as
+// long as the stream goes on. Both are refused before stb sees the file.
+TEST_F(LoadTissuePng, RefusesChunksAndImageDataPastWhatTheHeaderStates) {
+  const std::string ihdr = png_header(1, 1).substr(8, 21);  // length, type and data of a 1 x 1 RGBA IHDR
+  const std::string start = std::string("\x89PNG\r\n\x1a\n", 8) + ihdr + std::string(4, '\0');
+  std::string claims = start + std::string("\x7f\xff\xff\xffIDAT", 8) + "short";
+  try {
+    decode_tissue_png(claims, "claims.png", 2, 2, where_, key_);
+    FAIL() << "a 2 GiB chunk in a small file was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("a chunk claims 2147483647 bytes, more than the file holds"),
+              std::string::npos) << e.what();
+  }
+  // 10 MB of zeros compress to ~10 KB; a 1 x 1 image holds 5 bytes of rows.
+  const std::string zeros(10 << 20, '\0');
+  std::string packed(compressBound(uLong(zeros.size())), '\0');
+  uLongf packed_size = uLongf(packed.size());
+  ASSERT_EQ(compress2(reinterpret_cast<Bytef*>(packed.data()), &packed_size,
+                      reinterpret_cast<const Bytef*>(zeros.data()), uLong(zeros.size()), 9), Z_OK);
+  packed.resize(packed_size);
+  const std::string bomb = start + chunk("IDAT", packed) + chunk("IEND", "");
+  try {
+    decode_tissue_png(bomb, "bomb.png", 2, 2, where_, key_);
+    FAIL() << "a deflate bomb was inflated";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("its image data inflates to more than the 1 x 1 px its header states"),
+              std::string::npos) << e.what();
+  }
 }
 
 TEST_F(LoadTissuePng, RefusesToDecodeWhatDoesNotFitTheRoom) {
