@@ -172,7 +172,7 @@ int run_command(const RunOptions& options) {
   double simulate_s = 0.0;
   std::vector<double> frame_seconds, tick_seconds;
   long pngs = 0;
-  // Written ones: a write that fails (a full disk, a file size limit, an I/O error) ends the run
+  // Frames written so far: a write that fails (a full disk, a file size limit, an I/O error) ends the run
   // with the frames before it kept, and leaves the folder's last whole run as it was.
   long written = 0;
   try {

@@ -8,8 +8,8 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <istream>
+#include <sstream>
 #include <utility>
 #include <vector>
 
@@ -66,7 +66,6 @@ MemoryPart memory_for(const TextShape& shape, const std::string& key) {
 }
 
 std::size_t room_in(const TraceOptions& options) { return options.memory_room.value_or(available_host_memory()); }
-
 
 // A number for a human: four significant digits (rates, durations).
 std::string rounded(double value) { return format_significant(value, 4); }
