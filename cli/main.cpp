@@ -2,6 +2,7 @@
 #include <CLI/CLI.hpp>
 
 #include <cerrno>
+#include <csignal>
 #include <cstdlib>
 #include <exception>
 #include <initializer_list>
@@ -168,6 +169,9 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : kExitBadInput;
   }
 
+  // A file size limit (ulimit -f) must end a write with EFBIG, which the writers report, not kill
+  // the process without a word.
+  std::signal(SIGXFSZ, SIG_IGN);
   try {
     if (*run_cmd) {
       run.backend = run_backend.choice();
@@ -188,7 +192,11 @@ int main(int argc, char** argv) {
     std::cerr << "bleedsim: error: " << e.what() << "\n";
     return kExitBadInput;
   } catch (const std::exception& e) {
-    std::cerr << "bleedsim: failed: " << e.what() << "\n";
+    // One line, whatever a library put in its message.
+    std::string what = e.what();
+    for (char& c : what)
+      if (c == '\n' || c == '\r') c = ' ';
+    std::cerr << "bleedsim: failed: " << what << "\n";
     return kExitFailed;
   }
   return kExitFailed;

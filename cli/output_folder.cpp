@@ -1,26 +1,60 @@
 #include "cli/output_folder.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <string>
 #include <system_error>
 
 namespace bleedsim::cli {
 
 namespace fs = std::filesystem;
 
+namespace {
+
+// The pid a running command wrote into its lock file; empty when it has not written it yet.
+std::string pid_in(int fd) {
+  char text[32] = {};
+  const ssize_t n = pread(fd, text, sizeof text - 1, 0);
+  std::string pid(text, n > 0 ? std::size_t(n) : 0);
+  while (!pid.empty() && (pid.back() == '\n' || pid.back() == ' ')) pid.pop_back();
+  return pid;
+}
+
+}  // namespace
+
 OutputFolder::OutputFolder(const fs::path& dir, const SourcePlace& where, const std::string& key)
     : dir_(dir), where_(where), key_(key) {
   if (dir.empty()) throw error("the output folder must not be empty");
-  make(dir);
+  // A constructor that throws runs no destructor: what it made goes here.
+  try {
+    make(dir);
+    lock();
+  } catch (...) {
+    remove_made();
+    throw;
+  }
 }
 
 OutputFolder::~OutputFolder() {
-  std::error_code ignored;
-  for (auto it = created_.rbegin(); it != created_.rend(); ++it) fs::remove(*it, ignored);
+  if (lock_fd_ >= 0) {
+    // Unlinked while still held: a command waiting on this file finds it gone and makes its own.
+    std::error_code ignored;
+    fs::remove(dir_ / kLockName, ignored);
+    close(lock_fd_);
+  }
+  remove_made();
 }
 
-fs::path OutputFolder::subfolder(const std::string& name) {
-  make(dir_ / name);
-  return dir_ / name;
+void OutputFolder::remove_made() {
+  std::error_code ignored;
+  for (auto it = created_.rbegin(); it != created_.rend(); ++it) fs::remove(*it, ignored);
+  created_.clear();
 }
 
 void OutputFolder::make(const fs::path& dir) {
@@ -30,12 +64,45 @@ void OutputFolder::make(const fs::path& dir) {
   for (fs::path p = dir; !p.empty() && !fs::exists(p, ec); p = p.parent_path()) missing.push_back(p);
   std::reverse(missing.begin(), missing.end());
   for (const fs::path& p : missing) {
-    if (!fs::create_directory(p, ec) && ec)
-      throw error("cannot create output folder '" + p.string() + "': " + ec.message());
-    created_.push_back(p);
+    if (fs::create_directory(p, ec)) created_.push_back(p);
+    else if (ec) throw error("cannot create output folder '" + p.string() + "': " + ec.message());
   }
   if (!fs::is_directory(dir, ec))
     throw error("cannot write to '" + dir.string() + "': it exists and is not a folder");
+}
+
+// flock(2) on a file in the folder: released by the kernel when the process ends however it ends,
+// so a killed run never leaves a stale lock. The file may be unlinked by the holder as it releases
+// it; a lock taken on an unlinked file holds nothing, so after locking, the file must still be the
+// one at the path (else try again).
+void OutputFolder::lock() {
+  const fs::path path = dir_ / kLockName;
+  for (int attempt = 0; attempt < 100; ++attempt) {
+    const int fd = open(path.c_str(), O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    if (fd < 0) throw error("cannot write to output folder '" + dir_.string() + "': " + std::strerror(errno));
+    if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
+      const int reason = errno;
+      const std::string pid = pid_in(fd);
+      close(fd);
+      if (reason != EWOULDBLOCK)
+        throw error("cannot lock output folder '" + dir_.string() + "': " + std::strerror(reason));
+      throw error("output folder '" + dir_.string() + "' is in use by another bleedsim run" +
+                  (pid.empty() ? std::string() : " (pid " + pid + ")") +
+                  "; wait for it to end, or write to another folder");
+    }
+    struct stat held {}, named {};
+    if (fstat(fd, &held) == 0 && stat(path.c_str(), &named) == 0 && held.st_ino == named.st_ino &&
+        held.st_dev == named.st_dev) {
+      lock_fd_ = fd;
+      // The pid is for the message another run prints; a full disk may keep it out, the lock holds.
+      const std::string pid = std::to_string(getpid()) + "\n";
+      const bool written = ftruncate(fd, 0) == 0 && pwrite(fd, pid.data(), pid.size(), 0) == ssize_t(pid.size());
+      static_cast<void>(written);
+      return;
+    }
+    close(fd);
+  }
+  throw error("cannot lock output folder '" + dir_.string() + "': its lock file keeps changing");
 }
 
 }  // namespace bleedsim::cli

@@ -7,32 +7,39 @@
 
 namespace bleedsim::cli {
 
-// The run's output folder. Made (with its parents) only after everything else about the run has
-// been checked; if the run then stops on bad input before keep(), the folders it made go again,
-// so bad input leaves nothing behind.
+// The output folder of one command (docs/reliability.md). Made (with its parents) only after
+// everything else about the input has been checked, and then held: one run at a time writes into
+// a folder. The lock is taken before anything in the folder is opened, and another run that asks
+// for the folder is refused, naming it and the pid that holds it. If the command then stops on bad
+// input before keep(), the folders it made go again, so bad input leaves nothing behind.
 class OutputFolder {
  public:
-  // Throws InputError at `where`/`key` when the folder cannot be made or written.
+  // The lock file, beside the outputs; it holds the running command's pid.
+  static constexpr const char* kLockName = ".bleedsim.lock";
+
+  // Throws InputError at `where`/`key` when the folder cannot be made or written, or is in use.
   OutputFolder(const std::filesystem::path& dir, const SourcePlace& where, const std::string& key);
+  // Releases the lock (and removes its file); removes the folders made, when not kept.
   ~OutputFolder();
   OutputFolder(const OutputFolder&) = delete;
   OutputFolder& operator=(const OutputFolder&) = delete;
 
   const std::filesystem::path& path() const { return dir_; }
-  // A subfolder (made now), e.g. "png".
-  std::filesystem::path subfolder(const std::string& name);
-  // The run has started writing: keep what was made.
+  // The command has started writing: keep what was made.
   void keep() { created_.clear(); }
   // An error about this folder at the place it was named.
   InputError error(const std::string& message) const { return InputError(where_, key_, message); }
 
  private:
   void make(const std::filesystem::path& dir);
+  void lock();
+  void remove_made();
 
   std::filesystem::path dir_;
   SourcePlace where_;
   std::string key_;
   std::vector<std::filesystem::path> created_;  // outermost first
+  int lock_fd_ = -1;
 };
 
 }  // namespace bleedsim::cli

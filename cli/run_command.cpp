@@ -15,6 +15,7 @@
 #include "cli/commands.h"
 #include "cli/output_folder.h"
 #include "cli/progress.h"
+#include "cli/run_files.h"
 #include "core/runtime/build_info.h"
 #include "core/io/contact_sheet.h"
 #include "core/io/hdf5_writer.h"
@@ -83,14 +84,6 @@ std::string png_name(long frame) {
   return name;
 }
 
-// PNGs a previous run left in this folder would mix with this run's.
-void remove_old_pngs(const fs::path& folder) {
-  for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
-    const std::string name = entry.path().filename().string();
-    if (name.rfind("frame_", 0) == 0 && entry.path().extension() == ".png") fs::remove(entry.path());
-  }
-}
-
 // What the replay will play: the trace, its repairs, and how its span meets the run's.
 void describe_replay(const Scene& s) {
   const Trace& trace = *s.trace;
@@ -107,13 +100,30 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+// The key that named the output folder: --out, [output].dir, or (when neither did) the scene's
+// name, from which the folder out/<name> was made.
+std::string output_dir_key(const RunOptions& options, const Scenario& scenario) {
+  if (options.out_dir) return "--out";
+  return scenario.places.count("output.dir") ? "output.dir" : "scene.name";
+}
+
+// A failure while writing: the frames finished so far stay in the partial folder, and the last
+// whole run in the folder is untouched. One line, as every failure is.
+std::runtime_error write_failure(const std::exception& e, long frames_done, const RunFiles& files) {
+  const std::string kept = frames_done == 0 ? "no frame was finished"
+                                            : std::to_string(frames_done) + " finished frame" +
+                                                  (frames_done == 1 ? "" : "s") + " kept in " +
+                                                  files.partial("").string();
+  return std::runtime_error(std::string(e.what()) + "; " + kept + ", the folder's last whole run left as it was");
+}
+
 }  // namespace
 
 std::unique_ptr<Simulation> make_simulation(const Scenario& scenario, const BackendChoice& backend) {
   try {
     return std::make_unique<Simulation>(scenario.scene, backend);
   } catch (const InputError& e) {
-    throw scenario.placed(e);  // the memory check names scene.width_px: point at its line
+    throw scenario.placed(e);  // the memory check names the key that sets the size: point at its line
   }
 }
 
@@ -122,10 +132,9 @@ int run_command(const RunOptions& options) {
   OutputSpec& out = scenario.output;
   if (options.png_every) out.png_every = *options.png_every;
   if (options.contact_sheet) out.contact_sheet = *options.contact_sheet;
-  const bool dir_from_cli = options.out_dir.has_value();
-  if (dir_from_cli) out.dir = *options.out_dir;
-  const SourcePlace dir_place = dir_from_cli ? SourcePlace{} : scenario.place_of("output.dir");
-  const std::string dir_key = dir_from_cli ? "--out" : "output.dir";
+  if (options.out_dir) out.dir = *options.out_dir;
+  const std::string dir_key = output_dir_key(options, scenario);
+  const SourcePlace dir_place = options.out_dir ? SourcePlace{} : scenario.place_of(dir_key);
 
   const std::unique_ptr<Simulation> made = make_simulation(scenario, options.backend);
   Simulation& sim = *made;
@@ -133,28 +142,15 @@ int run_command(const RunOptions& options) {
   const long frames = s.frame_count();
   const int png_every = out.png_every;
 
-  // Everything about the input is checked; only now is anything made on disk.
+  // Everything about the input is checked; only now is anything made on disk: the folder, held by
+  // this run alone, and in it the partial folder this run writes into (docs/reliability.md).
   OutputFolder folder(out.dir, dir_place, dir_key);
+  RunFiles files(folder.path());
+  folder.keep();
   const std::vector<FieldLayout> specs = fields_to_write(sim, out.fields);
-  const fs::path h5_path = folder.path() / "frames.h5";
-  std::unique_ptr<Hdf5FrameWriter> writer;
-  if (options.hdf5) {
-    try {
-      writer = std::make_unique<Hdf5FrameWriter>(h5_path.string(), specs, provenance(sim, scenario),
-                                                 out.deflate_level, s.trace.has_value());
-    } catch (const std::runtime_error& e) {
-      throw folder.error(e.what());
-    }
-  }
-  fs::path png_folder;
-  if (png_every > 0) {
-    png_folder = folder.subfolder("png");
-    remove_old_pngs(png_folder);
-  }
   std::unique_ptr<ContactSheet> sheet;
   if (out.contact_sheet > 0)
     sheet = std::make_unique<ContactSheet>(frames, out.contact_sheet, s.domain.width_px, s.domain.height_px);
-  folder.keep();
 
   if (!options.quiet)
     std::printf("bleedsim: %s: %ld frames of %d x %d px on %s (%s; %s)\n", s.name.c_str(), frames,
@@ -176,33 +172,48 @@ int run_command(const RunOptions& options) {
   double simulate_s = 0.0;
   std::vector<double> frame_seconds, tick_seconds;
   long pngs = 0;
-  for (long k = 0; k < frames && !interrupted; ++k) {
-    const Clock::time_point step_start = Clock::now();
-    sim.step();
-    for (std::size_t f = 0; f < specs.size(); ++f) sim.copy_field(specs[f].name, host[f].data());
-    frame_seconds.push_back(seconds_since(step_start));
-    simulate_s += frame_seconds.back();
-    tick_seconds.insert(tick_seconds.end(), sim.haptic_tick_seconds().begin(), sim.haptic_tick_seconds().end());
-    if (writer) writer->append(sim.time_s(), pointers, sim.haptic_ticks());
-    if (png_due(k, frames, png_every)) {
-      write_png_rgba((png_folder / png_name(k)).string(), s.domain.width_px, s.domain.height_px,
-                     host[0].data());
-      ++pngs;
+  // Frames written so far: a write that fails (a full disk, a file size limit, an I/O error) ends the run
+  // with the frames before it kept, and leaves the folder's last whole run as it was.
+  long written = 0;
+  try {
+    std::unique_ptr<Hdf5FrameWriter> writer;
+    if (options.hdf5)
+      writer = std::make_unique<Hdf5FrameWriter>(files.partial("frames.h5").string(), specs,
+                                                 provenance(sim, scenario), out.deflate_level, s.trace.has_value());
+    if (png_every > 0) fs::create_directory(files.partial("png"));
+    for (long k = 0; k < frames && !interrupted; ++k) {
+      const Clock::time_point step_start = Clock::now();
+      sim.step();
+      for (std::size_t f = 0; f < specs.size(); ++f) sim.copy_field(specs[f].name, host[f].data());
+      frame_seconds.push_back(seconds_since(step_start));
+      simulate_s += frame_seconds.back();
+      tick_seconds.insert(tick_seconds.end(), sim.haptic_tick_seconds().begin(), sim.haptic_tick_seconds().end());
+      if (writer) writer->append(sim.time_s(), pointers, sim.haptic_ticks());
+      if (png_due(k, frames, png_every)) {
+        write_png_rgba((files.partial("png") / png_name(k)).string(), s.domain.width_px, s.domain.height_px,
+                       host[0].data());
+        ++pngs;
+      }
+      if (sheet && sheet->wants(k)) sheet->add(k, host[0].data());
+      written = k + 1;
+      progress.update(k + 1);
     }
-    if (sheet && sheet->wants(k)) sheet->add(k, host[0].data());
-    progress.update(k + 1);
+    progress.clear();
+    if (writer) writer->finish(written == frames);
+    // An interrupted run's sheet shows the frames it reached; the cells after stay dark.
+    if (sheet) sheet->write(files.partial("contact_sheet.png").string());
+  } catch (const std::exception& e) {
+    progress.clear();
+    throw write_failure(e, written, files);
   }
-  progress.clear();
+  // The run is whole (finished, or interrupted in order): it replaces the folder's last one.
+  files.publish();
   const long done = sim.frames_done();
-  if (writer) writer->finish(done == frames);
-  // An interrupted run's sheet shows the frames it reached; the cells after stay dark.
-  const fs::path sheet_path = folder.path() / "contact_sheet.png";
-  if (sheet) sheet->write(sheet_path.string());
   const double wall_s = seconds_since(start);
 
-  std::string wrote = writer ? h5_path.string() : std::string("no HDF5");
-  if (pngs > 0) wrote += " and " + std::to_string(pngs) + " PNGs in " + png_folder.string();
-  if (sheet) wrote += " and " + sheet_path.string();
+  std::string wrote = options.hdf5 ? files.published("frames.h5").string() : std::string("no HDF5");
+  if (pngs > 0) wrote += " and " + std::to_string(pngs) + " PNGs in " + files.published("png").string();
+  if (sheet) wrote += " and " + files.published("contact_sheet.png").string();
   if (interrupted) {
     std::fprintf(stderr, "bleedsim: interrupted after %ld of %ld frames; kept %s\n", done, frames,
                  wrote.c_str());

@@ -112,7 +112,7 @@ void write_whole(const std::string& path, const std::string& text) {
 }  // namespace
 
 int trace_info_command(const std::string& path, double max_repair_gap_ms) {
-  const Trace trace = load_trace(path, TraceOptions{max_repair_gap_ms / 1000.0});
+  const Trace trace = load_trace(path, TraceOptions{max_repair_gap_ms / 1000.0, {}});
   const std::vector<TraceSample>& s = trace.samples;
   const auto range = [&](double TraceSample::*axis) {
     const auto [low, high] = std::minmax_element(s.begin(), s.end(),

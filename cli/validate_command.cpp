@@ -79,7 +79,7 @@ void describe_particles(const Scene& scene, std::int64_t stylus_cuts) {
 }  // namespace
 
 int validate_command(const std::string& scenario) {
-  const Scenario file = load_scenario(scenario);
+  const Scenario file = load_scenario(scenario, ReadTissue::header_only);
   const Scene& scene = file.scene;
   const OutputSpec& out = file.output;
   const Domain& d = scene.domain;

@@ -24,6 +24,16 @@ else()
   target_link_libraries(bleedsim_hdf5 INTERFACE PkgConfig::HDF5)
 endif()
 
+# zlib, to check a texture's compressed image data before stb inflates it (core/io/tissue_png.cpp):
+# static for the GPU machine, as HDF5's is.
+add_library(bleedsim_zlib INTERFACE)
+if(BLEEDSIM_STATIC)
+  target_link_libraries(bleedsim_zlib INTERFACE ${Z_STATIC_LIB})
+else()
+  find_package(ZLIB REQUIRED)
+  target_link_libraries(bleedsim_zlib INTERFACE ZLIB::ZLIB)
+endif()
+
 find_package(Threads REQUIRED)
 if(BLEEDSIM_TESTS)
   find_package(GTest REQUIRED)

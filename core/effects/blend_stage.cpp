@@ -7,7 +7,7 @@
 namespace bleedsim {
 namespace {
 
-std::size_t rgba_bytes(const Scene& scene) { return std::size_t(scene.domain.pixel_count()) * 4; }
+std::size_t rgba_bytes(const Scene& scene) { return scene.domain.pixels().to<std::size_t>() * 4; }
 
 // IEC 61966-2-1: the sRGB code value c ∈ [0, 1] as linear light.
 double linear_from_code(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
@@ -86,8 +86,8 @@ BlendStage::BlendStage(const StageKind& kind, const Scene& scene, State& state, 
                      input_or_null(blend_residue_field(scene)), frame.data.as<std::uint8_t>());
 }
 
-std::size_t BlendStage::bytes_for(const Scene& scene) {
-  return 2 * rgba_bytes(scene) + kOpticsTableFloats * sizeof(float);
+MemoryParts BlendStage::memory_for(const Scene& scene) {
+  return {scene.domain.memory(2 * 4), {"scene.width_px", "the blend's optical tables", Count(kOpticsTableFloats * sizeof(float))}};
 }
 
 void BlendStage::run(const Scene&, State&, Backend& backend) { launch(backend, work_); }

@@ -15,7 +15,7 @@ namespace bleedsim {
 class BlendStage final : public Stage {
  public:
   BlendStage(const StageKind& kind, const Scene& scene, State& state, Backend& backend);
-  static std::size_t bytes_for(const Scene& scene);
+  static MemoryParts memory_for(const Scene& scene);
   void run(const Scene& scene, State& state, Backend& backend) override;
 
  private:

@@ -11,7 +11,7 @@ int low_size(int size, int factor) { return (size + factor - 1) / factor; }
 
 std::size_t low_pixels(const Scene& scene) {
   const int f = scene.blur->downsample;
-  return std::size_t(low_size(scene.domain.width_px, f)) * std::size_t(low_size(scene.domain.height_px, f));
+  return (Count(low_size(scene.domain.width_px, f)) * Count(low_size(scene.domain.height_px, f))).to<std::size_t>();
 }
 
 }  // namespace
@@ -48,9 +48,14 @@ BlurStage::BlurStage(const StageKind& kind, const Scene& scene, State& state, Ba
   args_.blurred = blurred.data.as<float>();
 }
 
-std::size_t BlurStage::bytes_for(const Scene& scene) {
-  return (2 * std::size_t(scene.blur->radius_px) + 1) * sizeof(float) + 2 * low_pixels(scene) * sizeof(float) +
-         std::size_t(scene.domain.pixel_count()) * sizeof(float);
+MemoryParts BlurStage::memory_for(const Scene& scene) {
+  // The downsampled images are at most the panel's size: counted with it (low_pixels narrows only
+  // once the panel has been found to fit).
+  const int f = scene.blur->downsample;
+  const Count low = Count(low_size(scene.domain.width_px, f)) * Count(low_size(scene.domain.height_px, f));
+  return {scene.domain.memory(sizeof(float)),
+          {"scene.width_px", "the blur's downsampled images", low * (2 * sizeof(float))},
+          {"blur.radius_px", "the blur's weights", (Count(2) * Count(scene.blur->radius_px) + 1) * sizeof(float)}};
 }
 
 void BlurStage::run(const Scene&, State&, Backend& backend) {

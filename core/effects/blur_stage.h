@@ -13,7 +13,7 @@ namespace bleedsim {
 class BlurStage final : public Stage {
  public:
   BlurStage(const StageKind& kind, const Scene& scene, State& state, Backend& backend);
-  static std::size_t bytes_for(const Scene& scene);
+  static MemoryParts memory_for(const Scene& scene);
   void run(const Scene& scene, State& state, Backend& backend) override;
 
  private:

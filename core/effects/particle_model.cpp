@@ -3,14 +3,19 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/runtime/count.h"
+
 namespace bleedsim {
 namespace {
 
-// As a double: a grid too large to count in integers is measured before it is refused.
-double cells_along(double panel_mm, double cell_mm) { return std::max(1.0, std::ceil(panel_mm / cell_mm)); }
+// At least one; a panel that holds more cells than 2^64 is uncountable, and refused.
+Count cells_along(double panel_mm, double cell_mm) {
+  return std::max(Count(1), Count::ceil_of(panel_mm / cell_mm));
+}
 
+// Only ever for a scene whose lifetime check passed: at most 2e9 steps.
 std::uint32_t steps_in(double seconds, double steps_per_s) {
-  return std::uint32_t(std::max(1.0, std::round(seconds * steps_per_s)));
+  return std::max(Count(1), Count::floor_of(std::round(seconds * steps_per_s))).to<std::uint32_t>();
 }
 
 int bits_for(std::uint32_t value) {
@@ -30,8 +35,13 @@ double deepest_pile_mm(const ParticleParams& p, const Domain& d) {
   return std::min(along, 2.0 * std::sqrt(area_mm2 / M_PI));
 }
 
+// The fewest sub-steps inside the limit, or kMaxSubsteps + 1 when more than kMaxSubsteps would be
+// needed: a tiny particle's limit (or a vanishing one) asks for more steps than an int holds, so
+// the count is checked before it is narrowed.
 int fewest_stable_substeps(double frame_rate_hz, double limit_s) {
-  int n = std::max(1, int(std::floor(1.0 / (limit_s * frame_rate_hz))));
+  const Count at_least = Count::floor_of(1.0 / (limit_s * frame_rate_hz));
+  if (at_least > Count(kMaxSubsteps)) return kMaxSubsteps + 1;
+  int n = std::max(1, at_least.to<int>());
   while (1.0 / (frame_rate_hz * n) >= limit_s) ++n;  // the floor can land on the limit
   return n;
 }
@@ -77,7 +87,7 @@ double particle_lifetime_steps(const ParticleParams& p, double frame_rate_hz, in
   return p.lifetime_s * frame_rate_hz * double(substeps);
 }
 
-double particle_grid_cells(double cell_mm, double width_mm, double height_mm) {
+Count particle_grid_cells(double cell_mm, double width_mm, double height_mm) {
   return cells_along(width_mm, cell_mm) * cells_along(height_mm, cell_mm);
 }
 
@@ -92,9 +102,9 @@ ParticleLifetime particle_lifetime(const Scene& scene) {
   return {steps, std::min(steps, steps_in(p.fade_s, steps_per_s))};
 }
 
-std::size_t particle_cell_count(const Scene& scene) {
+Count particle_cell_count(const Scene& scene) {
   const double cell = particle_mechanics(*scene.particles, scene.domain, scene.frame_rate_hz).cell_mm;
-  return std::size_t(particle_grid_cells(cell, scene.domain.width_mm, scene.domain.height_mm));
+  return particle_grid_cells(cell, scene.domain.width_mm, scene.domain.height_mm);
 }
 
 ParticleModel make_particle_model(const Scene& scene) {
@@ -130,8 +140,8 @@ ParticleModel make_particle_model(const Scene& scene) {
   m.min_y = float(r);
   m.max_y = float(scene.domain.height_mm - r);
   m.cell_mm = float(mech.cell_mm);
-  m.cells_x = int(cells_along(scene.domain.width_mm, mech.cell_mm));
-  m.cells_y = int(cells_along(scene.domain.height_mm, mech.cell_mm));
+  m.cells_x = cells_along(scene.domain.width_mm, mech.cell_mm).to<int>();
+  m.cells_y = cells_along(scene.domain.height_mm, mech.cell_mm).to<int>();
   m.key_bits = bits_for(std::uint32_t(m.cells_x) * std::uint32_t(m.cells_y));
   m.lifetime = particle_lifetime(scene);
   m.jitter_mm = float(p.jitter_mm);

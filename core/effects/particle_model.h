@@ -6,6 +6,7 @@
 
 #include "core/effects/particle_params.h"
 #include "core/physics/particles.h"
+#include "core/runtime/count.h"
 #include "core/runtime/scene.h"
 
 namespace bleedsim {
@@ -13,6 +14,11 @@ namespace bleedsim {
 // The contacts the stability limit allows for: six in a hexagonal pile, and a margin for the seven
 // or eight that particles reach where a pile is overloaded or crowds against a wall.
 constexpr int kDesignContacts = 8;
+
+// The most sub-steps a frame may take ([particles].substeps, and the fewest the limit asks for).
+constexpr int kMaxSubsteps = 100000;
+// The most cells the collision grid may have: its keys are 32-bit.
+constexpr std::uint64_t kMaxGridCells = 4'000'000'000;
 
 // A particle is on the film's edge when the directions to its neighbours (weighted as the cohesion)
 // sum to more than this: inside a layer they cancel, on a straight edge of a hexagonal layer they
@@ -33,7 +39,7 @@ struct ParticleMechanics {
   double stiffness_per_s2;  // k = (|g|·H + a_coh·d) / (ε·d²): the deepest pile's overlap is ε·d
   double damping_per_s;     // c = ζ·√(2k): ζ of a pair's critical damping
   double step_limit_s;      // the largest stable sub-step, for kDesignContacts contacts
-  int substeps;             // the scene's, or the fewest inside the limit
+  int substeps;             // the scene's, or the fewest inside the limit (kMaxSubsteps + 1: more than allowed)
   double dt_s;              // 1 / (frame rate × substeps)
 };
 ParticleMechanics particle_mechanics(const ParticleParams& params, const Domain& domain, double frame_rate_hz);
@@ -58,9 +64,9 @@ double stable_time_step_s(double stiffness_per_s2, double damping_per_s, double 
 // Steps in a particle's lifetime, before rounding (a scene's check refuses more than can be counted).
 double particle_lifetime_steps(const ParticleParams& params, double frame_rate_hz, int substeps);
 
-// Cells of the collision grid over a width × height mm panel, as a double: a scene's check
-// (particle_table()) refuses the grids too large to key before anything counts them in integers.
-double particle_grid_cells(double cell_mm, double width_mm, double height_mm);
+// Cells of the collision grid over a width × height mm panel: a scene's check (particle_table())
+// refuses the grids too large to key before anything narrows the count.
+Count particle_grid_cells(double cell_mm, double width_mm, double height_mm);
 
 // The rest require scene.particles.
 ParticleModel make_particle_model(const Scene& scene);
@@ -69,6 +75,6 @@ double particle_steps_per_s(const Scene& scene);
 // Parts of the model, for what needs no more of it: the lifetime (the splat's), and the number of
 // cells of the collision grid (cell_count() of the model; the memory estimate's).
 ParticleLifetime particle_lifetime(const Scene& scene);
-std::size_t particle_cell_count(const Scene& scene);
+Count particle_cell_count(const Scene& scene);
 
 }  // namespace bleedsim

@@ -51,10 +51,17 @@ ParamProblem something_to_bear(const P& p, const Scene&) {
 
 ParamProblem substep_inside_stability_limit(const P& p, const Scene& scene) {
   const ParticleMechanics m = mechanics(p, scene);
-  if (m.dt_s < m.step_limit_s && m.substeps <= 100000) return {};
+  if (m.dt_s < m.step_limit_s && m.substeps <= kMaxSubsteps) return {};
   P fewest = p;
   fewest.substeps = 0;
   const int needed = mechanics(fewest, scene).substeps;
+  // No sub-step count the scene could give would do: the particles make the contact too stiff.
+  if (needed > kMaxSubsteps)
+    return {"diameter_mm", "particles of " + number(p.diameter_mm) + " mm make the contact so stiff (" +
+                               number(m.stiffness_per_s2) + "/s² for a " + number(m.depth_mm) + " mm pile at " +
+                               number(p.compression) + " compression) that its stability limit of " +
+                               number(m.step_limit_s * 1e3) + " ms needs more than " + std::to_string(kMaxSubsteps) +
+                               " sub-steps per frame; use larger particles, or more compression"};
   return {"substeps", "a sub-step of " + number(m.dt_s * 1e3) + " ms is past the contact's stability limit of " +
                           number(m.step_limit_s * 1e3) + " ms (stiffness " + number(m.stiffness_per_s2) +
                           "/s² for a " + number(m.depth_mm) + " mm pile at " + number(p.compression) +
@@ -96,10 +103,19 @@ ParamProblem lifetime_countable(const P& p, const Scene& scene) {
                             " steps; at most 2e9 can be counted"};
 }
 
+// The grid's cells are keyed in 32 bits. Its cells come from cell_mm, or when that is 0 from the
+// diameter (the range), so the refusal names whichever key set them.
 ParamProblem grid_keyable(const P& p, const Scene& scene) {
-  const double cells = particle_grid_cells(mechanics(p, scene).cell_mm, scene.domain.width_mm, scene.domain.height_mm);
-  if (cells < 4.0e9) return {};
-  return {"cell_mm", "the collision grid would have " + number(cells) + " cells; at most 4e9"};
+  const ParticleMechanics m = mechanics(p, scene);
+  const Domain& d = scene.domain;
+  if (particle_grid_cells(m.cell_mm, d.width_mm, d.height_mm) < Count(kMaxGridCells)) return {};
+  // For the message only: the count itself may be past what 64 bits hold.
+  const double cells = std::ceil(d.width_mm / m.cell_mm) * std::ceil(d.height_mm / m.cell_mm);
+  const std::string grid = "the collision grid would have " + number(cells) + " cells of " + number(m.cell_mm) +
+                           " mm; at most 4e9";
+  if (p.cell_mm > 0) return {"cell_mm", grid};
+  return {"diameter_mm", grid + " (cells of the range, diameter_mm × (1 + cohesion_range)): use larger particles, "
+                                "or a larger cell_mm"};
 }
 
 // The splat sums deposits as integers of bounded size: a particle's whole blood in one pixel (a
@@ -167,7 +183,7 @@ const ParamTable<ParticleParams>& particle_table() {
         "pushing it: a burst parts without a blast"},
        {"max_speed_mm_s", T::number, BLEEDSIM_MEMBER(P, max_speed_mm_s), "mm/s", {0, 1e5, true},
         "speed limit: no particle moves faster; with the sub-step, less than half a diameter a step"},
-       {"substeps", T::integer, BLEEDSIM_MEMBER(P, substeps), "", {0, 100000},
+       {"substeps", T::integer, BLEEDSIM_MEMBER(P, substeps), "", {0, double(kMaxSubsteps)},
         "physics steps per frame, inside the contact's stability limit", "0: the fewest inside the limit"},
        {"jitter_mm", T::number, BLEEDSIM_MEMBER(P, jitter_mm), "mm", {0, 100},
         "a new particle is placed up to ± this from its cut, in x and in y"},

@@ -50,12 +50,20 @@ ParticleStage::ParticleStage(const StageKind& kind, const Scene& scene, State& s
   backend.upload(counts_->data.data(), &none, sizeof none);
 }
 
-std::size_t ParticleStage::bytes_for(const Scene& scene) {
-  const std::size_t n = std::size_t(scene.particles->capacity);
+MemoryParts ParticleStage::memory_for(const Scene& scene) {
+  const ParticleParams& p = *scene.particles;
+  const std::size_t n = std::size_t(p.capacity);
   const std::size_t fields = n * (2 * sizeof(float) + 2 * sizeof(float) + sizeof(std::uint32_t)) +
                              sizeof(ParticleCounts);
-  return fields + particle_scratch_bytes(particle_cell_count(scene), int(n), sort_scratch_bound(n)) +
-         std::max(kInitialEmitters, scene.cuts.size()) * sizeof(Emitter);
+  // The scratch is per slot and per grid cell: its grid part is what the cells add to it. The cell
+  // count is below kMaxGridCells once the scene's checks have passed.
+  const std::size_t per_slot = particle_scratch_bytes(0, p.capacity, sort_scratch_bound(n));
+  const std::size_t with_grid =
+      particle_scratch_bytes(particle_cell_count(scene).to<std::size_t>(), p.capacity, sort_scratch_bound(n));
+  return {{"particles.capacity", std::to_string(p.capacity) + " particle slots", Count(fields) + per_slot},
+          {p.cell_mm > 0 ? "particles.cell_mm" : "particles.diameter_mm",
+           "a collision grid of " + std::to_string(particle_cell_count(scene).value()) + " cells", with_grid - per_slot},
+          {"cut", "the particles' emitters", Count(std::max(kInitialEmitters, scene.cuts.size())) * sizeof(Emitter)}};
 }
 
 void ParticleStage::emit(const Scene& scene, const State& state, Backend& backend, std::uint64_t step) {

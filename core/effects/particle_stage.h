@@ -16,7 +16,7 @@ class ParticleStage final : public Stage {
  public:
   ParticleStage(const StageKind& kind, const Scene& scene, State& state, Backend& backend);
   // An upper bound: the CUDA sort's scratch depends on the device.
-  static std::size_t bytes_for(const Scene& scene);
+  static MemoryParts memory_for(const Scene& scene);
   void run(const Scene& scene, State& state, Backend& backend) override;
 
  private:

@@ -91,10 +91,13 @@ std::vector<std::string> Pipeline::stage_names(const Scene& scene) {
   return names;
 }
 
-std::size_t Pipeline::backend_bytes(const Scene& scene) {
-  std::size_t bytes = 0;
-  for (const StageKind* kind : plan(scene)) bytes += kind->bytes_for(scene);
-  return bytes;
+MemoryParts Pipeline::memory(const Scene& scene) {
+  MemoryParts parts;
+  for (const StageKind* kind : plan(scene))
+    for (MemoryPart& part : kind->memory_for(scene)) parts.push_back(std::move(part));
+  return parts;
 }
+
+std::size_t Pipeline::backend_bytes(const Scene& scene) { return total_bytes(memory(scene)).to<std::size_t>(); }
 
 }  // namespace bleedsim

@@ -35,7 +35,8 @@ class Pipeline {
   static ParamProblem wiring_problem(const Scene& scene);
   // Their names, without building them.
   static std::vector<std::string> stage_names(const Scene& scene);
-  // Backend memory those stages will allocate.
+  // Backend memory those stages will allocate, by the key that sets each part's size, and in all.
+  static MemoryParts memory(const Scene& scene);
   static std::size_t backend_bytes(const Scene& scene);
 
  private:

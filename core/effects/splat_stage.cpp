@@ -6,7 +6,7 @@
 namespace bleedsim {
 namespace {
 
-std::size_t pixels(const Scene& scene) { return std::size_t(scene.domain.pixel_count()); }
+std::size_t pixels(const Scene& scene) { return scene.domain.pixels().to<std::size_t>(); }
 
 }  // namespace
 
@@ -36,8 +36,8 @@ SplatStage::SplatStage(const StageKind& kind, const Scene& scene, State& state, 
   args_.thickness_mm = thickness.data.as<float>();
 }
 
-std::size_t SplatStage::bytes_for(const Scene& scene) {
-  return pixels(scene) * (sizeof(std::uint64_t) + sizeof(float));
+MemoryParts SplatStage::memory_for(const Scene& scene) {
+  return {scene.domain.memory(sizeof(std::uint64_t) + sizeof(float))};
 }
 
 void SplatStage::run(const Scene&, State&, Backend& backend) { launch(backend, args_); }

@@ -9,10 +9,6 @@ namespace {
 
 constexpr std::size_t kInitialCutCapacity = 16;
 
-std::size_t stain_bytes(const Scene& scene) {
-  return std::size_t(scene.domain.pixel_count()) * sizeof(float);
-}
-
 std::size_t cut_capacity_for(std::size_t cuts) { return std::max(kInitialCutCapacity, cuts); }
 
 }  // namespace
@@ -22,8 +18,9 @@ SpreadStage::SpreadStage(const StageKind& kind, const Scene& scene, State& state
       stain_(add_field(scene, state, backend, "spread/stain")),
       cuts_(allocate(backend, cut_capacity_for(scene.cuts.size()) * sizeof(SpreadCut))) {}
 
-std::size_t SpreadStage::bytes_for(const Scene& scene) {
-  return stain_bytes(scene) + cut_capacity_for(scene.cuts.size()) * sizeof(SpreadCut);
+MemoryParts SpreadStage::memory_for(const Scene& scene) {
+  return {scene.domain.memory(sizeof(float)),
+          {"cut", "the spread's cuts", Count(cut_capacity_for(scene.cuts.size())) * sizeof(SpreadCut)}};
 }
 
 void SpreadStage::run(const Scene& scene, State& state, Backend& backend) {

@@ -51,7 +51,7 @@ const std::vector<StageKind>& stage_kinds() {
       {"spread", "spread", [](const Scene& s) { return s.spread.has_value(); },
        {image("spread/stain", ElementType::f32, 1, "1",
               "radial-spread stain: the share of a full stain (report 2.2.1), drawn as stain_depth_mm of blood")},
-       no_fields, SpreadStage::bytes_for, make<SpreadStage>},
+       no_fields, SpreadStage::memory_for, make<SpreadStage>},
       {"particles", "particles", [](const Scene& s) { return s.particles.has_value(); },
        {elements("particles/position", ElementType::f32, 2, true, "mm", "centre of each ring-buffer slot's particle"),
         elements("particles/velocity", ElementType::f32, 2, true, "mm/s", "velocity of each slot's particle"),
@@ -60,21 +60,21 @@ const std::vector<StageKind>& stage_kinds() {
                  "lifetime"),
         elements("particles/accounting", ElementType::u64, 1, false, "particles",
                  "emitted, alive, expired, overwritten: emitted = alive + expired + overwritten")},
-       no_fields, ParticleStage::bytes_for, make<ParticleStage>},
+       no_fields, ParticleStage::memory_for, make<ParticleStage>},
       {"splat", "particles", [](const Scene& s) { return s.particles.has_value(); },
        {image("splat/thickness", ElementType::f32, 1, "mm",
               "thickness of the film of blood the particles make: each one's volume spread over its splat radius")},
        [](const Scene&) { return std::vector<std::string>{"particles/position", "particles/age"}; },
-       SplatStage::bytes_for, make<SplatStage>},
+       SplatStage::memory_for, make<SplatStage>},
       {"blur", "blur", [](const Scene& s) { return s.blur.has_value(); },
        {image("blur/thickness", ElementType::f32, 1, "mm",
               "the film of blood downsampled, blurred and upsampled: what the blend lays over the tissue")},
-       [](const Scene&) { return std::vector<std::string>{"splat/thickness"}; }, BlurStage::bytes_for,
+       [](const Scene&) { return std::vector<std::string>{"splat/thickness"}; }, BlurStage::memory_for,
        make<BlurStage>},
       {"trail", "trail", [](const Scene& s) { return s.trail.has_value(); },
        {image("trail/residue", ElementType::f32, 1, "mm",
               "the blood that ran over each pixel, left behind as an equivalent film and drying")},
-       [](const Scene&) { return std::vector<std::string>{"splat/thickness"}; }, TrailStage::bytes_for,
+       [](const Scene&) { return std::vector<std::string>{"splat/thickness"}; }, TrailStage::memory_for,
        make<TrailStage>},
       {"blend", "", [](const Scene&) { return true; },
        {image("frame", ElementType::u8, 4, "sRGB 8-bit",
@@ -85,7 +85,7 @@ const std::vector<StageKind>& stage_kinds() {
            if (field) reads.push_back(field);
          return reads;
        },
-       BlendStage::bytes_for, make<BlendStage>},
+       BlendStage::memory_for, make<BlendStage>},
   };
   return kinds;
 }

@@ -25,7 +25,7 @@ struct StageKind {
   std::vector<FieldLayout> writes;
   // What it reads, in this scene: fields that stages before it write.
   std::vector<std::string> (*reads)(const Scene&);
-  std::size_t (*bytes_for)(const Scene&);  // the backend memory it will allocate
+  MemoryParts (*memory_for)(const Scene&);  // the backend memory it will allocate
   std::unique_ptr<Stage> (*make)(const StageKind&, const Scene&, State&, Backend&);
 
   // Its declaration of `field`, or null when it does not write it.

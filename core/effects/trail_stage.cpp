@@ -14,13 +14,13 @@ float trail_decay_per_frame(const TrailParams& trail, double frame_rate_hz) {
 TrailStage::TrailStage(const StageKind& kind, const Scene& scene, State& state, Backend& backend) : Stage(kind) {
   const Field& film = input(scene, state, "splat/thickness");
   Field& residue = add_field(scene, state, backend, "trail/residue");
-  const std::vector<float> dry(std::size_t(scene.domain.pixel_count()), 0.0f);
+  const std::vector<float> dry(scene.domain.pixels().to<std::size_t>(), 0.0f);
   backend.upload(residue.data.data(), dry.data(), dry.size() * sizeof(float));
   work_ = TrailPixel{film.data.as<const float>(), residue.data.as<float>(), float(scene.trail->residue),
                      trail_decay_per_frame(*scene.trail, scene.frame_rate_hz), scene.domain.grid()};
 }
 
-std::size_t TrailStage::bytes_for(const Scene& scene) { return std::size_t(scene.domain.pixel_count()) * sizeof(float); }
+MemoryParts TrailStage::memory_for(const Scene& scene) { return {scene.domain.memory(sizeof(float))}; }
 
 void TrailStage::run(const Scene&, State&, Backend& backend) { launch(backend, work_); }
 

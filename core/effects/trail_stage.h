@@ -11,7 +11,7 @@ namespace bleedsim {
 class TrailStage final : public Stage {
  public:
   TrailStage(const StageKind& kind, const Scene& scene, State& state, Backend& backend);
-  static std::size_t bytes_for(const Scene& scene);
+  static MemoryParts memory_for(const Scene& scene);
   void run(const Scene& scene, State& state, Backend& backend) override;
 
  private:

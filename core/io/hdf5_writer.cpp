@@ -1,8 +1,13 @@
 #include "core/io/hdf5_writer.h"
 
 #include <hdf5.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <sys/statvfs.h>
 
 #include <cstdint>
+#include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <set>
@@ -12,6 +17,8 @@
 #include <vector>
 
 #include "core/haptics/haptic_channel.h"
+#include "core/runtime/count.h"
+#include "core/runtime/memory.h"
 
 namespace bleedsim {
 namespace {
@@ -54,16 +61,32 @@ using PropertyList = Handle<H5Pclose>;
 
 // --- Errors ------------------------------------------------------------------------------------
 
-// The description HDF5 recorded where the failure was first detected (the innermost frame of its
-// error stack): it usually carries the OS reason, e.g. "No such file or directory".
-herr_t keep_innermost(unsigned depth, const H5E_error2_t* error, void* out) {
-  if (depth == 0 && error->desc) *static_cast<std::string*>(out) = error->desc;
+// Why HDF5 failed, from its error stack: the OS error when a frame of the stack records one (its
+// file drivers write "errno = 28, error message = ..."), else the description where the failure was
+// first detected (the innermost frame). One line either way: HDF5's descriptions can hold a
+// newline (a ctime() timestamp), and a failure is reported in one.
+struct Reason {
+  std::string innermost;
+  int os_error = 0;
+};
+
+herr_t read_frame(unsigned depth, const H5E_error2_t* error, void* out) {
+  Reason& reason = *static_cast<Reason*>(out);
+  if (!error->desc) return 0;
+  const std::string desc = error->desc;
+  if (depth == 0) reason.innermost = desc;
+  const std::size_t at = desc.find("errno = ");
+  if (at != std::string::npos && reason.os_error == 0) reason.os_error = std::atoi(desc.c_str() + at + 8);
   return 0;
 }
 
 [[noreturn]] void throw_hdf5_error(const std::string& what) {
-  std::string detail;
-  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, keep_innermost, &detail);
+  Reason reason;
+  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, read_frame, &reason);
+  if (reason.os_error > 0) throw std::runtime_error(what + ": " + std::strerror(reason.os_error));
+  std::string detail = reason.innermost;
+  for (char& c : detail)
+    if (c == '\n' || c == '\r') c = ' ';
   throw std::runtime_error(what + (detail.empty() ? "" : " (HDF5: " + detail + ")"));
 }
 
@@ -276,19 +299,41 @@ void write_frame(const Checker& check, const GrowingDataset& target, hsize_t fra
   write_rows(check, target, frame, 1, data);
 }
 
+// --- Room for the next frame -------------------------------------------------------------------
+
+// HDF5 updates its superblock and indexes in place as a frame goes in: a write that fails half way
+// (a full disk, a file size limit) can leave a file that no longer opens, and HDF5 1.10 then
+// crashes closing it. So the room for a whole frame is checked before any of it is written, and a
+// run out of room stops with every earlier frame intact. The room is what the file system leaves
+// to this user and what the file size limit (ulimit -f) leaves the file. Returns 0, or the errno
+// of the write that would fail (ENOSPC, EFBIG) with `left` set to the room there is.
+int room_for(const std::string& file, std::uint64_t need, std::uint64_t& left) {
+  left = std::numeric_limits<std::uint64_t>::max();
+  struct statvfs fs {};
+  const std::string folder = std::filesystem::path(file).parent_path().string();
+  if (statvfs(folder.empty() ? "." : folder.c_str(), &fs) == 0) left = std::uint64_t(fs.f_bavail) * fs.f_frsize;
+  if (left < need) return ENOSPC;
+  rlimit limit{};
+  struct stat st {};
+  if (getrlimit(RLIMIT_FSIZE, &limit) == 0 && limit.rlim_cur != RLIM_INFINITY && stat(file.c_str(), &st) == 0) {
+    const std::uint64_t size = std::uint64_t(st.st_size);
+    left = limit.rlim_cur > size ? limit.rlim_cur - size : 0;
+    if (left < need) return EFBIG;
+  }
+  return 0;
+}
+
 // --- Checks on the caller's input ----------------------------------------------------------------
 
 // HDF5 stores a chunk's size in 32 bits; a frame is one chunk, so one frame must fit.
 constexpr std::uint64_t kMaxChunkBytes = 0xffffffffu;
+// What a frame's chunk indexes, extended extents and attributes can add, generously: a new index
+// node for every dataset, and the file's own.
+constexpr std::uint64_t kMetadataPerDataset = 16 * 1024;
+constexpr std::uint64_t kMetadataMargin = 64 * 1024;
 
-std::uint64_t frame_bytes(const FieldLayout& field) {
-  std::uint64_t bytes = element_size(field.type);
-  for (const int extent : {field.channels, field.width, field.height}) {
-    if (bytes > std::numeric_limits<std::uint64_t>::max() / std::uint64_t(extent))
-      return std::numeric_limits<std::uint64_t>::max();
-    bytes *= std::uint64_t(extent);
-  }
-  return bytes;
+Count frame_bytes(const FieldLayout& field) {
+  return Count(element_size(field.type)) * field.channels * field.width * field.height;
 }
 
 void validate(const std::vector<FieldLayout>& fields,
@@ -310,7 +355,7 @@ void validate(const std::vector<FieldLayout>& fields,
     if (!field.image && field.height != 1)
       throw std::invalid_argument(quoted + ": a field that is not an image has height 1 (got " +
                                   std::to_string(field.height) + "); its width counts elements");
-    if (frame_bytes(field) > kMaxChunkBytes)
+    if (frame_bytes(field) > Count(kMaxChunkBytes))
       throw std::runtime_error(quoted +
                                ": one frame is larger than 4 GiB, HDF5's largest chunk "
                                "(each frame is one chunk)");
@@ -335,6 +380,7 @@ struct Hdf5FrameWriter::Impl {
   GrowingDataset time;
   std::vector<GrowingDataset> fields;
   std::vector<GrowingDataset> haptics;  // one per haptic column, when the run has the channel
+  Count frame_bytes = 0;  // one frame of every field
   std::int64_t frames = 0;
   std::int64_t ticks = 0;
   bool finished = false;
@@ -357,6 +403,10 @@ Hdf5FrameWriter::Hdf5FrameWriter(const std::string& path, const std::vector<Fiel
                                  int deflate_level, bool haptic_channel)
     : impl_(std::make_unique<Impl>()) {
   validate(fields, attributes, deflate_level);
+  // HDF5 1.10 can crash at exit closing a file whose last write failed; every file this writer
+  // opens is closed by it, so the library's exit handler has nothing to do. (This must come before
+  // the library's first call in the process to take effect.)
+  H5dont_atexit();
   // Errors come back as exceptions carrying HDF5's message; its own printing to stderr would
   // only repeat them (and scare users on errors the caller handles).
   H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
@@ -398,6 +448,7 @@ Hdf5FrameWriter::Hdf5FrameWriter(const std::string& path, const std::vector<Fiel
     impl.fields.push_back(
         create_growing_dataset(check, parent.get(), parts.back(), where, stored_type_of(spec.type),
                                memory_type_of(spec.type), frame_shape, 1, deflate_level));
+    impl.frame_bytes += frame_bytes(spec);
     const hid_t dataset = impl.fields.back().dataset.get();
     write_text_attribute(check, dataset, where, "unit", spec.unit);
     write_text_attribute(check, dataset, where, "description", spec.description);
@@ -440,6 +491,18 @@ void Hdf5FrameWriter::append(double time_s, const std::vector<const void*>& fiel
       throw std::invalid_argument("Hdf5FrameWriter::append: no data for " + impl.fields[i].where);
   if (!ticks.empty() && impl.haptics.empty())
     throw std::invalid_argument("Hdf5FrameWriter::append: haptic ticks for a file made without the haptic channel");
+
+  // The most one frame can add: its data (deflate can grow a chunk a little), and the indexes.
+  const std::size_t datasets = 1 + impl.fields.size() + impl.haptics.size();
+  Count need = Count(sizeof time_s) + impl.frame_bytes + Count(impl.frame_bytes.value() / 64) + kMetadataMargin +
+               Count(datasets) * kMetadataPerDataset;
+  for (const HapticColumn& column : haptic_columns()) need += Count(ticks.size()) * column.components * 8;
+  std::uint64_t left = 0;
+  if (const int full = room_for(impl.check.file, need.value(), left))
+    throw std::runtime_error("cannot write frame " + std::to_string(impl.frames) + " to HDF5 file '" +
+                             impl.check.file + "': " + std::strerror(full) + " (" + human_bytes(double(left)) +
+                             (full == EFBIG ? " below the file size limit" : " free") + ", a frame takes up to " +
+                             human_bytes(need.as_double()) + ")");
 
   const hsize_t frame = hsize_t(impl.frames);
   write_frame(impl.check, impl.time, frame, &time_s);

@@ -1,6 +1,6 @@
 #include "core/io/scenario.h"
 
-#include <toml++/toml.h>
+#include "core/io/toml.h"
 
 #include <algorithm>
 #include <cstdint>
@@ -43,6 +43,10 @@ const ParamTable<TissueFile>& tissue_table() {
 ParamProblem resolve_output(OutputSpec& out, const Written& written, const Scene& scene) {
   if (!written.has("dir")) out.dir = "out/" + scene.name;
   if (out.dir.empty()) return {"dir", "must not be empty"};
+  for (const fs::path& part : fs::path(out.dir))
+    if (part.string().size() > kMaxFileName)
+      return {"dir", "holds a name of " + std::to_string(part.string().size()) + " characters; a file system holds " +
+                         "at most " + std::to_string(kMaxFileName)};
   for (std::size_t i = 0; i < out.fields.size(); ++i) {
     const std::string key = "fields[" + std::to_string(i) + "]";
     const std::string& name = out.fields[i];
@@ -291,7 +295,14 @@ void load_named_trace(const Written& written, Scenario& s) {
                          (fs::is_directory(file, ec) ? " (it is a folder)" : "") + " (relative paths are to the scenario file)");
   const auto gap = written.numbers.find("repair_gap_ms");
   const double repair_gap_ms = gap == written.numbers.end() ? 0.0 : gap->second;
-  s.scene.trace = load_trace(file.lexically_normal().string(), TraceOptions{repair_gap_ms / 1000.0});
+  const std::string path = file.lexically_normal().string();
+  // Sized from its lines before it is read: a trace too large for this machine names the key.
+  try {
+    require_memory({trace_memory(path, "haptics.trace")}, available_host_memory(), "host");
+  } catch (const InputError& e) {
+    throw s.placed(e);
+  }
+  s.scene.trace = load_trace(path, TraceOptions{repair_gap_ms / 1000.0, {}});
 }
 
 void read_haptics(Reader& r, const toml::table& root, Scenario& s) {
@@ -303,24 +314,33 @@ void read_haptics(Reader& r, const toml::table& root, Scenario& s) {
   load_named_trace(written, s);
 }
 
-// The tissue comes last: it is the one large allocation, made only once the scene is known to fit.
-void read_tissue(Reader& r, const toml::table& root, Scenario& s) {
+// The tissue comes last: it is the one large allocation, made only once the scene is known to fit:
+// the tissue, a texture's decoding and every stage's memory, each part under the key that sets it.
+void read_tissue(Reader& r, const toml::table& root, Scenario& s, ReadTissue how) {
   TissueFile tissue;
   r.read(r.table(root, "tissue"), tissue_table(), tissue, s.scene, "tissue");
   Scene& scene = s.scene;
-  const std::size_t tissue_bytes = std::size_t(scene.domain.pixel_count()) * 4;
-  require_room(scene, tissue_bytes + Pipeline::backend_bytes(scene), available_host_memory(), "host",
-               s.place_of("scene.width_px"));
-  if (tissue.texture.empty()) {
-    scene.tissue = procedural_tissue(scene.domain.width_px, scene.domain.height_px, scene.seed);
-    scene.tissue_source = "procedural";
-    return;
+  MemoryParts parts = Pipeline::memory(scene);
+  parts.push_back(scene.domain.memory(4));
+  const SourcePlace texture_place = s.place_of("tissue.texture");
+  scene.tissue_source = "procedural";
+  if (!tissue.texture.empty()) {
+    fs::path file = tissue.texture;
+    if (file.is_relative()) file = fs::path(s.path).parent_path() / file;
+    scene.tissue_source = file.lexically_normal().string();
+    parts.push_back(texture_memory(read_tissue_png_header(scene.tissue_source, texture_place, "tissue.texture"),
+                                   "tissue.texture"));
   }
-  fs::path file = tissue.texture;
-  if (file.is_relative()) file = fs::path(s.path).parent_path() / file;
-  scene.tissue_source = file.lexically_normal().string();
-  scene.tissue = load_tissue_png(scene.tissue_source, scene.domain.width_px, scene.domain.height_px,
-                                 s.place_of("tissue.texture"), "tissue.texture");
+  try {
+    require_memory(parts, available_host_memory(), "host");
+  } catch (const InputError& e) {
+    throw s.placed(e);
+  }
+  if (how == ReadTissue::header_only) return;
+  const Domain& d = scene.domain;
+  scene.tissue = tissue.texture.empty()
+                     ? procedural_tissue(d.width_px, d.height_px, scene.seed)
+                     : load_tissue_png(scene.tissue_source, d.width_px, d.height_px, texture_place, "tissue.texture");
 }
 
 }  // namespace
@@ -335,7 +355,10 @@ InputError Scenario::placed(const InputError& error) const {
   const std::string prefix = error.key() + ": ";
   const std::string what = error.what();
   const std::string message = what.compare(0, prefix.size(), prefix) == 0 ? what.substr(prefix.size()) : what;
-  return InputError(place_of(error.key()), error.key(), message);
+  // A key the file left out (a default set the size) is placed at its table's header.
+  const std::string& key = error.key();
+  const std::string table = key.substr(0, key.find_first_of(".["));
+  return InputError(places.count(key) || !places.count(table) ? place_of(key) : place_of(table), key, message);
 }
 
 std::vector<TableView> scenario_tables() {
@@ -353,7 +376,7 @@ const ParamView& scenario_param(const std::string& key) {
   throw std::out_of_range("no scenario parameter '" + key + "'");
 }
 
-Scenario parse_scenario(const std::string& text, const std::string& path) {
+Scenario parse_scenario(const std::string& text, const std::string& path, ReadTissue tissue) {
   toml::table root;
   try {
     root = toml::parse(text, path);
@@ -380,12 +403,12 @@ Scenario parse_scenario(const std::string& text, const std::string& path) {
   read_cuts(r, root, s);
   read_haptics(r, root, s);
   r.read(r.table(root, "output"), output_table(), s.output, s.scene, "output");
-  read_tissue(r, root, s);
+  read_tissue(r, root, s, tissue);
   return s;
 }
 
-Scenario load_scenario(const std::string& path) {
-  return parse_scenario(read_text_file(path, "scenario"), path);
+Scenario load_scenario(const std::string& path, ReadTissue tissue) {
+  return parse_scenario(read_text_file(path, "scenario", kMaxScenarioBytes), path, tissue);
 }
 
 const ParamTable<OutputSpec>& output_table() {

@@ -1,6 +1,7 @@
 #pragma once
 // Scenario files (TOML, docs/scenario-format.md) → a Scene, with what the file says beside it: the
 // outputs, its text and where each key was written.
+#include <cstdint>
 #include <map>
 #include <string>
 #include <vector>
@@ -26,13 +27,21 @@ struct Scenario {
   InputError placed(const InputError& error) const;
 };
 
+// A scenario is a description, not data: a file larger than this is refused unread.
+constexpr std::uintmax_t kMaxScenarioBytes = 16u << 20;
+
+// What reading a scenario does with its tissue, once the run is known to fit in memory: draws it
+// (a run needs it), or only reads a texture's header (bleedsim validate, which allocates nothing
+// the size of the panel; Scene::tissue stays empty).
+enum class ReadTissue { draw, header_only };
+
 // Reads, validates and resolves a scenario file: every key checked for type and range (each
-// table's rules in core/), unknown keys refused, the tissue texture loaded. Throws InputError
-// naming file, line, column and key.
-Scenario load_scenario(const std::string& path);
+// table's rules in core/), unknown keys refused, the memory the run takes counted, the tissue
+// drawn or loaded. Throws InputError naming file, line, column and key.
+Scenario load_scenario(const std::string& path, ReadTissue tissue = ReadTissue::draw);
 
 // The same for text already in memory; `path` names it in messages and anchors relative paths.
-Scenario parse_scenario(const std::string& text, const std::string& path);
+Scenario parse_scenario(const std::string& text, const std::string& path, ReadTissue tissue = ReadTissue::draw);
 
 // Every table a scenario may hold, in the order docs/scenario-format.md lists them: what
 // `bleedsim params` prints and the docs' generated tables show.

@@ -3,20 +3,31 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <sstream>
 
 #include "core/runtime/input_error.h"
+#include "core/runtime/memory.h"
 
 namespace bleedsim {
 
-std::string read_text_file(const std::string& path, const std::string& what) {
+std::ifstream open_text_file(const std::string& path, const std::string& what) {
   const SourcePlace file{path, 0, 0};
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw InputError(file, "", "cannot read " + what + " file: it is a folder");
   errno = 0;
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(file, "", "cannot read " + what + " file: " + std::strerror(errno ? errno : ENOENT));
+  return in;
+}
+
+std::string read_text_file(const std::string& path, const std::string& what, std::uintmax_t max_bytes) {
+  std::ifstream in = open_text_file(path, what);
+  std::error_code ec;
+  const std::uintmax_t bytes = std::filesystem::file_size(path, ec);
+  if (!ec && bytes > max_bytes)
+    throw InputError(SourcePlace{path, 0, 0}, "",
+                     "the " + what + " file is " + human_bytes(double(bytes)) + "; at most " +
+                         human_bytes(double(max_bytes)) + " is read");
   std::ostringstream text;
   text << in.rdbuf();
   return text.str();

@@ -1,11 +1,17 @@
 #pragma once
-// A user's text file read whole, with a message that says why it could not be.
+// A user's text file, opened or read whole, with a message that says why it could not be.
+#include <cstdint>
+#include <fstream>
 #include <string>
 
 namespace bleedsim {
 
-// The bytes of `path`. Throws InputError naming the file: "cannot read <what> file: <reason>"
+// `path` opened for reading. Throws InputError naming the file: "cannot read <what> file: <reason>"
 // (a folder, a missing file, no permission).
-std::string read_text_file(const std::string& path, const std::string& what);
+std::ifstream open_text_file(const std::string& path, const std::string& what);
+
+// The bytes of `path`, with the same errors, refused before it is read when it holds more than
+// `max_bytes`.
+std::string read_text_file(const std::string& path, const std::string& what, std::uintmax_t max_bytes);
 
 }  // namespace bleedsim

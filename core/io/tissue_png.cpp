@@ -1,16 +1,21 @@
 #include "core/io/tissue_png.h"
 
 #include <stb/stb_image.h>
+#define ZLIB_CONST  // next_in points at bytes zlib only reads
+#include <zlib.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <cstdint>
-#include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <memory>
+#include <new>
 #include <stdexcept>
 #include <vector>
+
+#include "core/runtime/count.h"
 
 namespace bleedsim {
 namespace {
@@ -72,14 +77,123 @@ Image resample_bilinear(const std::uint8_t* src, int src_w, int src_h, int width
   return out;
 }
 
-struct FileCloser {
-  void operator()(std::FILE* file) const { std::fclose(file); }
-};
+constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+constexpr std::size_t kHeaderBytes = 24;  // the signature, then IHDR's length, type, width, height
+
 struct StbFree {
   void operator()(stbi_uc* pixels) const { stbi_image_free(pixels); }
 };
 
+std::uint32_t big_endian(const unsigned char* at) {
+  return std::uint32_t(at[0]) << 24 | std::uint32_t(at[1]) << 16 | std::uint32_t(at[2]) << 8 | at[3];
+}
+
+// The width and height the first kHeaderBytes state, checked against the cap.
+TextureHeader parse_header(const unsigned char* bytes, std::size_t size, const std::string& name,
+                           const SourcePlace& where, const std::string& key) {
+  const std::string texture = "texture '" + name + "'";
+  if (size < kHeaderBytes || std::memcmp(bytes, kSignature, sizeof kSignature) != 0 ||
+      std::memcmp(bytes + 12, "IHDR", 4) != 0)
+    throw InputError(where, key, "cannot decode " + texture + " as a PNG: it does not start with a PNG signature "
+                                 "and header");
+  const std::uint32_t width = big_endian(bytes + 16), height = big_endian(bytes + 20);
+  if (width == 0 || height == 0)
+    throw InputError(where, key, "cannot decode " + texture + " as a PNG: its header states a size of 0");
+  if (width > std::uint32_t(kMaxTextureSide) || height > std::uint32_t(kMaxTextureSide))
+    throw InputError(where, key, texture + " is " + std::to_string(width) + " x " + std::to_string(height) +
+                                     " px; a texture may be at most " + std::to_string(kMaxTextureSide) +
+                                     " px on a side (it is resampled to the panel anyway)");
+  return {int(width), int(height), size};
+}
+
+// stb_image trusts a PNG further than its header: it allocates an IDAT chunk's stated length before
+// reading it, and inflates the image data into a buffer it doubles for as long as the stream goes
+// on. So, before stb sees the file, every chunk must lie inside it, and the image data must inflate
+// to no more than the rows the header states (counted by texture_memory()): a 400-byte file that
+// claimed a 2 GB chunk made stb ask for 2 GB (found by fuzz/tissue_png_fuzzer), and a small file of
+// compressed zeros can inflate a thousandfold.
+void check_chunks(const unsigned char* bytes, std::size_t size, const TextureHeader& header, const std::string& name,
+                  const SourcePlace& where, const std::string& key) {
+  const std::string texture = "texture '" + name + "'";
+  const Count most = Count(2) * Count(header.height) * (Count(header.width) * 8 + 1);
+  z_stream inflater{};
+  bool inflating = false, stream_checked = false;
+  std::uint64_t inflated = 0;
+  unsigned char scratch[1 << 14];
+  for (std::size_t at = sizeof kSignature; at + 12 <= size;) {
+    const std::uint32_t length = big_endian(bytes + at);
+    const std::string type(reinterpret_cast<const char*>(bytes + at + 4), 4);
+    if (length > size - at - 12) {
+      if (inflating) inflateEnd(&inflater);
+      throw InputError(where, key, "cannot decode " + texture + " as a PNG: a chunk claims " + std::to_string(length) +
+                                       " bytes, more than the file holds after it");
+    }
+    if (type == "CgBI") stream_checked = true;  // Apple's raw deflate: left to stb, whose size it bounds
+    if (type == "IDAT" && !stream_checked) {
+      if (!inflating && inflateInit(&inflater) != Z_OK) throw std::bad_alloc();
+      inflating = true;
+      inflater.next_in = bytes + at + 8;
+      inflater.avail_in = length;
+      while (inflater.avail_in > 0) {
+        inflater.next_out = scratch;
+        inflater.avail_out = sizeof scratch;
+        const int status = inflate(&inflater, Z_NO_FLUSH);
+        inflated += sizeof scratch - inflater.avail_out;
+        if (Count(inflated) > most) {
+          inflateEnd(&inflater);
+          throw InputError(where, key, "cannot decode " + texture + " as a PNG: its image data inflates to more " +
+                                           "than the " + std::to_string(header.width) + " x " +
+                                           std::to_string(header.height) + " px its header states");
+        }
+        // The stream's end, or an error stb will report: nothing more to count.
+        if (status != Z_OK) {
+          stream_checked = true;
+          break;
+        }
+      }
+    }
+    if (type == "IEND") break;
+    at += 12 + std::size_t(length);
+  }
+  if (inflating) inflateEnd(&inflater);
+}
+
+// "cannot read texture 'x': <why>", for a file that cannot be opened or read.
+InputError unreadable(const std::string& path, const SourcePlace& where, const std::string& key, int error) {
+  return InputError(where, key, "cannot read texture '" + path + "': " + std::strerror(error ? error : EIO));
+}
+
+std::ifstream open_texture(const std::string& path, const SourcePlace& where, const std::string& key) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec))
+    throw InputError(where, key, "cannot read texture '" + path + "': it is a folder");
+  errno = 0;
+  std::ifstream file(path, std::ios::binary);
+  if (!file) throw unreadable(path, where, key, errno ? errno : ENOENT);
+  return file;
+}
+
 }  // namespace
+
+TextureHeader read_tissue_png_header(const std::string& path, const SourcePlace& where, const std::string& key) {
+  std::ifstream file = open_texture(path, where, key);
+  unsigned char bytes[kHeaderBytes] = {};
+  file.read(reinterpret_cast<char*>(bytes), kHeaderBytes);
+  TextureHeader header = parse_header(bytes, std::size_t(file.gcount()), path, where, key);
+  std::error_code ec;
+  header.file_bytes = std::filesystem::file_size(path, ec);
+  if (ec) throw unreadable(path, where, key, ec.value());
+  return header;
+}
+
+MemoryPart texture_memory(const TextureHeader& header, const std::string& key) {
+  // Inflated: a filter byte and up to 4 channels of 2 bytes per pixel, each row; stb grows its buffer
+  // by doubling, so up to twice that. Decoded: 4 channels of up to 2 bytes, and the 8-bit copy.
+  const Count pixels = Count(header.width) * Count(header.height);
+  const Count inflated = Count(2) * Count(header.height) * (Count(header.width) * 8 + 1);
+  return {key, "decoding the " + std::to_string(header.width) + " x " + std::to_string(header.height) + " px texture",
+          Count(header.file_bytes) + inflated + pixels * (8 + 4)};
+}
 
 Image load_tissue_png(const std::string& path, int width, int height, const SourcePlace& where,
                       const std::string& key) {
@@ -87,30 +201,43 @@ Image load_tissue_png(const std::string& path, int width, int height, const Sour
     throw std::invalid_argument("load_tissue_png: width and height must be positive (got " +
                                 std::to_string(width) + " x " + std::to_string(height) + ")");
   }
-  // Opened here rather than by stb, so a missing file is reported with the system's reason.
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
-    throw InputError(where, key, "cannot read texture '" + path + "': it is a folder");
+  // The header first, so that a file too large to decode is refused before it is read.
+  const TextureHeader header = read_tissue_png_header(path, where, key);
+  std::ifstream file = open_texture(path, where, key);
+  std::string bytes(header.file_bytes, '\0');
   errno = 0;
-  const std::unique_ptr<std::FILE, FileCloser> file(std::fopen(path.c_str(), "rb"));
-  if (!file) {
-    throw InputError(where, key,
-                     "cannot read texture '" + path + "': " + std::strerror(errno ? errno : ENOENT));
+  if (!file.read(bytes.data(), std::streamsize(bytes.size()))) throw unreadable(path, where, key, errno);
+  return decode_tissue_png(bytes, path, width, height, where, key);
+}
+
+Image decode_tissue_png(const std::string& bytes, const std::string& name, int width, int height,
+                        const SourcePlace& where, const std::string& key, std::size_t room) {
+  if (width <= 0 || height <= 0) {
+    throw std::invalid_argument("decode_tissue_png: width and height must be positive (got " +
+                                std::to_string(width) + " x " + std::to_string(height) + ")");
   }
+  const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
+  const TextureHeader header = parse_header(data, bytes.size(), name, where, key);
+  const MemoryPart need = texture_memory(header, key);
+  if (need.bytes > Count(room))
+    throw InputError(where, key, need.what + " '" + name + "' needs " + human_bytes(need.bytes.as_double()) +
+                                     " of host memory, but only " + human_bytes(double(room)) + " is available");
+  if (bytes.size() > std::size_t(std::numeric_limits<int>::max()))
+    throw InputError(where, key, "cannot decode texture '" + name + "' as a PNG: the file is larger than 2 GiB");
+  check_chunks(data, bytes.size(), header, name, where, key);
   int src_w = 0;
   int src_h = 0;
   int channels_in_file = 0;
   const std::unique_ptr<stbi_uc, StbFree> pixels(
-      stbi_load_from_file(file.get(), &src_w, &src_h, &channels_in_file, 4));
+      stbi_load_from_memory(data, int(bytes.size()), &src_w, &src_h, &channels_in_file, 4));
   if (!pixels) {
     const char* reason = stbi_failure_reason();
     throw InputError(where, key,
-                     "cannot decode texture '" + path + "' as a PNG: " +
-                         (reason ? reason : "unknown error"));
+                     "cannot decode texture '" + name + "' as a PNG: " + (reason ? reason : "unknown error"));
   }
   if (src_w == width && src_h == height) {
-    const std::size_t bytes = std::size_t(width) * std::size_t(height) * 4;
-    return Image{width, height, std::vector<std::uint8_t>(pixels.get(), pixels.get() + bytes)};
+    const std::size_t bytes_out = (Count(width) * Count(height) * 4).to<std::size_t>();
+    return Image{width, height, std::vector<std::uint8_t>(pixels.get(), pixels.get() + bytes_out)};
   }
   return resample_bilinear(pixels.get(), src_w, src_h, width, height);
 }

@@ -8,10 +8,13 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <istream>
 #include <sstream>
 #include <utility>
+#include <vector>
 
 #include "core/io/text_file.h"
+#include "core/runtime/count.h"
 #include "core/runtime/message_text.h"
 
 namespace bleedsim {
@@ -24,6 +27,45 @@ const std::string kHeader = "t_s,x_m,y_m,z_m,buttons";
 const std::string kForceHeader = "t_s,x_m,y_m,z_m,buttons,fx_N,fy_N,fz_N";
 const char* const kRequired[] = {"device", "frame", "rate_hz"};
 
+// What reading a trace holds, per line of its text: a sample, its line number and, while the
+// spacing is checked, its interval. The metadata keys are few; each is held with its line's text.
+constexpr std::size_t kMaxMetadataKeys = 1000;
+constexpr std::size_t kBytesPerLine = sizeof(TraceSample) + sizeof(int) + sizeof(double);
+constexpr std::size_t kBytesPerKey = 128;  // a map node and two short strings
+
+// The lines of a text, and its longest (which std::getline holds whole), counted in one pass of a
+// buffer at a time.
+struct TextShape {
+  std::uint64_t lines = 1;
+  std::uint64_t longest = 0;
+};
+
+TextShape shape_of(std::istream& in) {
+  TextShape shape;
+  std::uint64_t current = 0;
+  std::vector<char> buffer(1 << 16);
+  while (in.read(buffer.data(), std::streamsize(buffer.size())) || in.gcount() > 0) {
+    for (std::streamsize i = 0; i < in.gcount(); ++i) {
+      if (buffer[std::size_t(i)] != '\n') {
+        ++current;
+        continue;
+      }
+      ++shape.lines;
+      shape.longest = std::max(shape.longest, current);
+      current = 0;
+    }
+  }
+  shape.longest = std::max(shape.longest, current);
+  return shape;
+}
+
+MemoryPart memory_for(const TextShape& shape, const std::string& key) {
+  return {key, "a trace of " + std::to_string(shape.lines) + " lines",
+          Count(shape.lines) * kBytesPerLine +
+              Count(std::min<std::uint64_t>(shape.lines, kMaxMetadataKeys)) * (Count(shape.longest) + kBytesPerKey)};
+}
+
+std::size_t room_in(const TraceOptions& options) { return options.memory_room.value_or(available_host_memory()); }
 
 // A number for a human: four significant digits (rates, durations).
 std::string rounded(double value) { return format_significant(value, 4); }
@@ -95,50 +137,69 @@ class Parser {
     throw InputError(SourcePlace{trace_.path, line, column}, key, message);
   }
 
-  Trace run(const std::string& text) {
-    std::vector<std::string> lines;
-    {
-      std::istringstream in(text);
-      for (std::string line; std::getline(in, line);) {
-        if (!line.empty() && line.back() == '\r') line.pop_back();
-        lines.push_back(line);
-      }
-    }
-    const auto blank = [](const std::string& l) {
-      return std::all_of(l.begin(), l.end(), [](char c) { return is_space(c); });
-    };
-    if (std::all_of(lines.begin(), lines.end(), blank))
-      fail(0, 0, "", "the file is empty (expected the metadata block, the header " + kHeader + " and samples)");
-
+  // Reads the lines of `in` one at a time: only the samples are kept, never the whole text.
+  Trace run(std::istream& in) {
+    std::string line;
+    int number = 0;
+    bool any_text = false;
     // The metadata block and the header.
-    std::size_t i = 0;
-    for (; i < lines.size(); ++i) {
-      const std::string& line = lines[i];
+    while (next_line(in, line, number)) {
       if (blank(line)) continue;
+      any_text = true;
       if (line[line.find_first_not_of(" \t")] == '#') {
-        read_metadata(line, int(i) + 1);
+        read_metadata(line, number);
         continue;
       }
+      header_line_ = number;
       break;
     }
-    if (i == lines.size())
+    if (!any_text)
+      fail(0, 0, "", "the file is empty (expected the metadata block, the header " + kHeader + " and samples)");
+    if (header_line_ == 0)
       fail(0, 0, "header", "no header line: expected " + kHeader + " (or " + kForceHeader + ") after the metadata");
-    header_line_ = int(i) + 1;
-    read_header(lines[i]);
+    read_header(line);
     check_metadata();
 
     // The samples.
-    for (++i; i < lines.size(); ++i) {
-      const std::string& line = lines[i];
+    while (next_line(in, line, number)) {
       if (blank(line) || line[line.find_first_not_of(" \t")] == '#') continue;
-      read_sample(line, int(i) + 1);
+      read_sample(line, number);
     }
     if (trace_.samples.empty()) fail(header_line_, 0, "samples", "no samples after the header");
     check_spacing();
     return std::move(trace_);
   }
 
+  void reserve(std::size_t lines) {
+    trace_.samples.reserve(lines);
+    lines_.reserve(lines);
+  }
+
  private:
+  static bool blank(const std::string& line) {
+    return std::all_of(line.begin(), line.end(), [](char c) { return is_space(c); });
+  }
+
+  // The next line of `in` without its end (LF or CR LF) as `line`, numbered from 1. A UTF-8
+  // byte-order mark before the first line is skipped (editors write one); a UTF-16 one, or a
+  // carriage return that ends a line alone (old Mac line ends), is refused at its place.
+  bool next_line(std::istream& in, std::string& line, int& number) const {
+    if (!std::getline(in, line)) return false;
+    ++number;
+    if (number == 1) {
+      if (line.compare(0, 3, "\xEF\xBB\xBF") == 0) line.erase(0, 3);
+      else if (line.compare(0, 2, "\xFF\xFE") == 0 || line.compare(0, 2, "\xFE\xFF") == 0)
+        fail(1, 1, "", "the file starts with a UTF-16 byte-order mark: a trace is UTF-8 (or ASCII) text; save it "
+                       "as UTF-8");
+    }
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const std::size_t cr = line.find('\r');
+    if (cr != std::string::npos)
+      fail(number, int(cr) + 1, "", "a carriage return (CR) alone ends a line here: lines must end in LF or CR LF "
+                                    "(old Mac line ends? convert them, e.g. with tr '\\r' '\\n')");
+    return true;
+  }
+
   void read_metadata(const std::string& line, int number) {
     // "# key: value"; a '#' line of any other shape is a comment.
     const std::size_t hash = line.find('#');
@@ -152,6 +213,8 @@ class Parser {
     const std::string name = "metadata." + key.text;
     if (const auto seen = meta_lines_.find(key.text); seen != meta_lines_.end())
       fail(number, key.column, name, "given twice (first on line " + std::to_string(seen->second.first) + ")");
+    if (meta_lines_.size() == kMaxMetadataKeys)
+      fail(number, key.column, name, "more than " + std::to_string(kMaxMetadataKeys) + " metadata keys");
     meta_lines_[key.text] = {number, value.column};
     trace_.metadata[key.text] = value.text;
 
@@ -181,7 +244,8 @@ class Parser {
       // A near miss among the other keys ("rate", "Frame") is probably a misspelling.
       const std::string* nearest = nullptr;
       std::size_t best = 4;
-      for (const auto& [key, where] : meta_lines_) {
+      for (const auto& entry : meta_lines_) {
+        const std::string& key = entry.first;  // a structured binding cannot be captured in C++17 (clang refuses)
         if (std::any_of(std::begin(kRequired), std::end(kRequired), [&](const char* r) { return key == r; })) continue;
         if (const std::size_t d = edit_distance(lower(key), required); d < best) best = d, nearest = &key;
       }
@@ -302,8 +366,35 @@ class Parser {
                  " ms), not the " + format_number(trace_.rate_hz) + " Hz the header states");
     }
 
+    // The gaps, each refused or counted, before any memory is taken for their repairs.
+    std::uint64_t fills = 0;
+    std::size_t first_gap = 0;
+    for (std::size_t k = 1; k < s.size(); ++k) {
+      const double gap = s[k].t_s - s[k - 1].t_s;
+      if (!(gap > 1.5 * period)) continue;
+      if (!(options_.max_repair_gap_s > 0 && gap <= options_.max_repair_gap_s))
+        fail(lines_[k], 1, "t_s",
+             "a " + rounded(gap * 1000) + " ms dropout after t = " + format_fixed(s[k - 1].t_s, 4) + " s (between line " +
+                 std::to_string(lines_[k - 1]) + " and line " + std::to_string(lines_[k]) +
+                 "): the samples must be at most 1.5 intervals (" + rounded(1.5 * period * 1000) + " ms) apart at " +
+                 format_number(trace_.rate_hz) + " Hz" +
+                 (options_.max_repair_gap_s > 0
+                      ? "; repairs are allowed up to " + rounded(options_.max_repair_gap_s * 1000) + " ms"
+                      : std::string()));
+      fills += std::uint64_t(std::max(1L, std::lround(gap / period)) - 1);
+      if (first_gap == 0) first_gap = k;
+    }
+    if (first_gap == 0) return;
+    const Count need = (Count(s.size()) + fills) * sizeof(TraceSample);
+    const std::size_t room = room_in(options_);
+    if (need > Count(room))
+      fail(lines_[first_gap], 1, "t_s",
+           "repairing the dropouts adds up to " + std::to_string(fills) + " samples: " +
+               human_bytes(need.as_double()) + " of host memory, but only " + human_bytes(double(room)) +
+               " is available");
+
     std::vector<TraceSample> repaired;
-    repaired.reserve(s.size());
+    repaired.reserve(need.to<std::size_t>() / sizeof(TraceSample));
     for (std::size_t k = 0; k < s.size(); ++k) {
       if (k > 0) {
         const TraceSample& a = s[k - 1];
@@ -311,14 +402,6 @@ class Parser {
         const double gap = b.t_s - a.t_s;
         if (gap > 1.5 * period) {
           const std::string what = "a " + rounded(gap * 1000) + " ms dropout after t = " + format_fixed(a.t_s, 4) + " s";
-          if (!(options_.max_repair_gap_s > 0 && gap <= options_.max_repair_gap_s))
-            fail(lines_[k], 1, "t_s",
-                 what + " (between line " + std::to_string(lines_[k - 1]) + " and line " + std::to_string(lines_[k]) +
-                     "): the samples must be at most 1.5 intervals (" + rounded(1.5 * period * 1000) +
-                     " ms) apart at " + format_number(trace_.rate_hz) + " Hz" +
-                     (options_.max_repair_gap_s > 0
-                          ? "; repairs are allowed up to " + rounded(options_.max_repair_gap_s * 1000) + " ms"
-                          : std::string()));
           const long missing = std::max(1L, std::lround(gap / period)) - 1;
           long filled = 0;
           for (long m = 1; m <= missing; ++m) {
@@ -353,14 +436,37 @@ class Parser {
   int header_line_ = 0;
 };
 
+// Sizes the trace from its text before reading it, then reads it line by line.
+Trace read_trace(std::istream& in, const std::string& path, const TraceOptions& options) {
+  const TextShape shape = shape_of(in);
+  in.clear();
+  in.seekg(0);
+  const MemoryPart need = memory_for(shape, "");
+  const std::size_t room = room_in(options);
+  if (need.bytes > Count(room))
+    throw InputError(SourcePlace{path, 0, 0}, "",
+                     need.what + " needs up to " + human_bytes(need.bytes.as_double()) +
+                         " of host memory to read, but only " + human_bytes(double(room)) + " is available");
+  Parser parser(path, options);
+  parser.reserve(shape.lines);
+  return parser.run(in);
+}
+
 }  // namespace
 
 Trace parse_trace(const std::string& text, const std::string& path, const TraceOptions& options) {
-  return Parser(path, options).run(text);
+  std::istringstream in(text);
+  return read_trace(in, path, options);
 }
 
 Trace load_trace(const std::string& path, const TraceOptions& options) {
-  return parse_trace(read_text_file(path, "trace"), path, options);
+  std::ifstream in = open_text_file(path, "trace");
+  return read_trace(in, path, options);
+}
+
+MemoryPart trace_memory(const std::string& path, const std::string& key) {
+  std::ifstream in = open_text_file(path, "trace");
+  return memory_for(shape_of(in), key);
 }
 
 }  // namespace bleedsim

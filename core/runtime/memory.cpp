@@ -55,13 +55,42 @@ std::size_t available_host_memory() {
                    address_space_room()});
 }
 
-void require_room(const Scene& scene, std::size_t need, std::size_t room, const std::string& memory_kind,
-                  const SourcePlace& where) {
-  if (need <= room) return;
-  throw InputError(where, "scene.width_px",
-                   "a " + std::to_string(scene.domain.width_px) + " x " +
-                       std::to_string(scene.domain.height_px) + " px scene needs " + human_bytes(double(need)) +
-                       " of " + memory_kind + " memory, but only " + human_bytes(double(room)) + " is available");
+MemoryParts merged(const MemoryParts& parts) {
+  MemoryParts out;
+  for (const MemoryPart& part : parts) {
+    const auto same = std::find_if(out.begin(), out.end(), [&](const MemoryPart& p) { return p.key == part.key; });
+    if (same == out.end()) out.push_back(part);
+    else same->bytes += part.bytes;
+  }
+  std::stable_sort(out.begin(), out.end(), [](const MemoryPart& a, const MemoryPart& b) { return a.bytes > b.bytes; });
+  return out;
+}
+
+Count total_bytes(const MemoryParts& parts) {
+  Count total = 0;
+  for (const MemoryPart& part : parts) total += part.bytes;
+  return total;
+}
+
+MemoryParts times(const MemoryParts& parts, std::uint64_t factor) {
+  MemoryParts out = parts;
+  for (MemoryPart& part : out) part.bytes *= factor;
+  return out;
+}
+
+void require_memory(const MemoryParts& parts, std::size_t room, const std::string& memory_kind,
+                    const SourcePlace& where) {
+  const Count need = total_bytes(parts);
+  if (need <= Count(room)) return;
+  const MemoryParts by_key = merged(parts);
+  // The parts that matter: the largest, and any other of at least a hundredth of the need.
+  std::string items;
+  for (const MemoryPart& part : by_key)
+    if (items.empty() || part.bytes.as_double() >= need.as_double() / 100)
+      items += (items.empty() ? "" : ", ") + human_bytes(part.bytes.as_double()) + " for " + part.what;
+  throw InputError(where, by_key.front().key,
+                   "this scene needs " + human_bytes(need.as_double()) + " of " + memory_kind + " memory (" + items +
+                       "), but only " + human_bytes(double(room)) + " is available");
 }
 
 std::string human_bytes(double bytes) {

@@ -31,6 +31,9 @@ std::string name_from_file(const std::string& path) {
 
 ParamProblem name_a_folder(Scene& scene, const Written& written, const Scene&) {
   if (!written.has("name")) scene.name = name_from_file(written.file);
+  if (scene.name.size() > kMaxFileName)
+    return {"name", "is " + std::to_string(scene.name.size()) + " characters long; a folder's name may be at most " +
+                        std::to_string(kMaxFileName) + " (it names the output folder)"};
   if (is_folder_name(scene.name)) return {};
   return {"name", "'" + scene.name + "' must start with a letter or digit and hold only letters, digits, "
                                      "'.', '_' and '-' (it names the output folder)"};
@@ -44,6 +47,11 @@ ParamProblem frames_countable(const Scene& scene, const Scene&) {
 }
 
 }  // namespace
+
+MemoryPart Domain::memory(Count bytes_per_pixel) const {
+  return {"scene.width_px", "the " + std::to_string(width_px) + " x " + std::to_string(height_px) + " px panel",
+          pixels() * bytes_per_pixel};
+}
 
 PixelGrid Domain::grid() const {
   return PixelGrid{width_px, height_px, static_cast<float>(width_mm / width_px),
@@ -102,7 +110,7 @@ ParamProblem scene_problem(const Scene& scene) {
   if (ParamProblem problem = check_params(scene_table(), scene, scene)) return problem;
   const Domain& d = scene.domain;
   if (scene.tissue.width != d.width_px || scene.tissue.height != d.height_px ||
-      scene.tissue.rgba.size() != std::size_t(d.pixel_count()) * 4)
+      Count(scene.tissue.rgba.size()) != d.pixels() * 4)
     return {"tissue", "must be a width_px × height_px RGBA8 image"};
   for (std::size_t i = 0; i < scene.cuts.size(); ++i)
     if (ParamProblem problem = check_params(cut_table(), scene.cuts[i], scene, "cut[" + std::to_string(i) + "]"))

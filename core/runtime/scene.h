@@ -3,6 +3,7 @@
 // the effects the scene calls for with their parameters, the cuts. Built by a host program in code,
 // or from a scenario file by core/io/scenario.h, which keeps the file's text, where each key was
 // written and the output settings beside the Scene, not in it. State holds everything that changes.
+#include <cstddef>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -16,8 +17,10 @@
 #include "core/haptics/haptic_params.h"
 #include "core/haptics/trace.h"
 #include "core/physics/pixel_grid.h"
+#include "core/runtime/count.h"
 #include "core/runtime/cut.h"
 #include "core/runtime/image.h"
+#include "core/runtime/memory.h"
 #include "core/runtime/params.h"
 
 namespace bleedsim {
@@ -30,8 +33,14 @@ struct Domain {
   double height_mm = 0.0;
 
   PixelGrid grid() const;
-  std::int64_t pixel_count() const { return std::int64_t{width_px} * height_px; }
+  Count pixels() const { return Count(width_px) * Count(height_px); }
+  // `bytes_per_pixel` over the whole panel: memory its size, scene.width_px × height_px, sets.
+  MemoryPart memory(Count bytes_per_pixel) const;
 };
+
+// The longest name of a file or folder most file systems hold (NAME_MAX): a scene's name, which
+// names its output folder, and each part of an output path.
+constexpr std::size_t kMaxFileName = 255;
 
 // The most frames a run may have: frame_count() is an int, and counters derived from it stay exact.
 constexpr std::int64_t kMaxFrames = 10'000'000;

@@ -13,12 +13,12 @@ namespace {
 // The fields must fit where the backend computes, and a host copy of them must fit for reading
 // frames out. Checked before anything is allocated, so a too-large scene fails at once.
 void check_fits(const Scene& scene, const Backend& backend) {
-  const std::size_t on_backend = Pipeline::backend_bytes(scene);
+  const MemoryParts on_backend = Pipeline::memory(scene);
   if (backend.kind() == BackendKind::cpu) {
-    require_room(scene, 2 * on_backend, available_host_memory(), "host");
+    require_memory(times(on_backend, 2), available_host_memory(), "host");
   } else {
-    require_room(scene, on_backend, backend.memory_available(), "device");
-    require_room(scene, on_backend, available_host_memory(), "host");
+    require_memory(on_backend, backend.memory_available(), "device");
+    require_memory(on_backend, available_host_memory(), "host");
   }
 }
 

@@ -86,6 +86,7 @@ TEST_F(BadInput, ZeroSize) {
 }
 
 TEST_F(BadInput, SizeTooLargeForMemory) {
+  BLEEDSIM_SKIP_UNLESS_ADDRESS_SPACE_CAN_BE_LIMITED();
   // 40000 x 40000 px needs tens of GiB; the address space is capped at 4 GB so the test means the
   // same on every machine.
   expect_refused(scenario_with("width_px = 64\nheight_px = 48", "width_px = 40000\nheight_px = 40000"),
@@ -130,6 +131,40 @@ TEST_F(BadInput, UnwritableOutputPathFromTheScenario) {
   EXPECT_NE(result.output.find("bad.toml:12:"), std::string::npos) << result.output;
   EXPECT_NE(result.output.find("output.dir"), std::string::npos) << result.output;
   EXPECT_FALSE(fs::exists(dir_ / "a-file" / "out"));
+}
+
+// Issue 13, item 3: a folder name too long for the file system exited 2 and left the parent folder
+// it had made on the way.
+TEST_F(BadInput, AnOutputPathTooLongLeavesNoFolderItMadeBehind) {
+  out_ = dir_ / "newparent" / std::string(300, 'b');
+  expect_refused(scenario_with("", ""), {"--out: cannot create output folder", "File name too long"});
+  EXPECT_FALSE(fs::exists(dir_ / "newparent"));
+}
+
+// Issue 13, item 3: a scene name too long to name a folder passed validate, then run exited 2
+// naming output.dir (which the file did not write), with no line, and left out/ behind.
+TEST_F(BadInput, ASceneNameTooLongForAFolderIsRefusedAtItsKey) {
+  const std::string text = "[scene]\nname = \"" + std::string(300, 'a') + "\"\n" + scenario_with("[scene]\n", "");
+  const fs::path file = dir_ / "bad.toml";
+  write_text(file, text);
+  const std::string message = "bad.toml:2:8: scene.name: is 300 characters long; a folder's name may be at most 255";
+  const CliResult validate = run_cli("validate '" + file.string() + "'");
+  EXPECT_EQ(validate.exit_code, 2) << validate.output;
+  EXPECT_NE(validate.output.find(message), std::string::npos) << validate.output;
+  const CliResult run = run_shell("cd '" + dir_.string() + "' && '" + cli_path() + "' run bad.toml --backend cpu");
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_NE(run.output.find(message), std::string::npos) << run.output;
+  EXPECT_FALSE(fs::exists(dir_ / "out"));
+}
+
+// The folder a scene's name makes, out/<name>, is named by scene.name when it cannot be made.
+TEST_F(BadInput, ADefaultOutputFolderThatCannotBeMadeIsPlacedAtTheSceneName) {
+  write_text(dir_ / "out", "a file where the folder out/ would go");
+  const fs::path file = dir_ / "bad.toml";
+  write_text(file, "[scene]\nname = \"blocked\"\n" + scenario_with("[scene]\n", ""));
+  const CliResult run = run_shell("cd '" + dir_.string() + "' && '" + cli_path() + "' run bad.toml --backend cpu");
+  EXPECT_EQ(run.exit_code, 2) << run.output;
+  EXPECT_NE(run.output.find("bad.toml:2:8: scene.name: cannot "), std::string::npos) << run.output;
 }
 
 TEST_F(BadInput, UnknownBackendOrNegativePngInterval) {

@@ -35,6 +35,23 @@ inline CliResult run_cli(const std::string& arguments, const std::string& shell_
   return run_shell(shell_prefix + " '" + cli_path() + "' " + arguments);
 }
 
+// Whether `ulimit -v` can cap this build's CLI: an AddressSanitizer build reserves terabytes of
+// address space at start and cannot run under any such limit.
+inline bool address_space_can_be_limited() {
+#if defined(__SANITIZE_ADDRESS__)
+  return false;
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+  return false;
+#endif
+#endif
+  return true;
+}
+#define BLEEDSIM_SKIP_UNLESS_ADDRESS_SPACE_CAN_BE_LIMITED()                                                   \
+  if (!::bleedsim::test::address_space_can_be_limited())                                                     \
+  GTEST_SKIP() << "ulimit -v cannot cap an AddressSanitizer build (it reserves terabytes of address space); " \
+                  "the Release and -O0 builds run this test"
+
 // A fresh, empty folder for the running test.
 inline std::filesystem::path scratch_folder() {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();

@@ -50,6 +50,26 @@ TEST(TraceInfo, ABadTraceExitsTwoNamingItsLine) {
   EXPECT_NE(missing.output.find("cannot read trace file"), std::string::npos) << missing.output;
 }
 
+// Issue 13, item 7: a UTF-8 byte-order mark (an editor's) was refused with a misleading header
+// message, and a file with CR-only line ends got "no header line" with no line number.
+TEST(TraceInfo, AcceptsAByteOrderMarkAndLocatesCarriageReturnsAlone) {
+  const auto folder = scratch_folder();
+  write_text(folder / "bom.csv", "\xEF\xBB\xBF" + kTrace);
+  const CliResult bom = run_cli("trace info '" + (folder / "bom.csv").string() + "' --repair-gap-ms 5");
+  EXPECT_EQ(bom.exit_code, 0) << bom.output;
+  EXPECT_NE(bom.output.find("samples    9 over 0.008 s"), std::string::npos) << bom.output;
+
+  std::string mac = kTrace;
+  for (char& c : mac)
+    if (c == '\n') c = '\r';
+  write_text(folder / "mac.csv", mac);
+  const CliResult cr = run_cli("trace info '" + (folder / "mac.csv").string() + "'");
+  EXPECT_EQ(cr.exit_code, 2) << cr.output;
+  // "# device: Novint Falcon" is 23 characters: the first CR is at line 1, column 24.
+  EXPECT_NE(cr.output.find("mac.csv:1:24: a carriage return (CR) alone ends a line here"), std::string::npos)
+      << cr.output;
+}
+
 TEST(TraceSynthCommand, WritesATraceThatTraceInfoDescribes) {
   const auto folder = scratch_folder();
   const auto file = folder / "two.csv";

@@ -97,7 +97,7 @@ TEST(ParticleModel, ItsPartsAreTheWholeModels) {
   EXPECT_EQ(particle_lifetime(scene).steps, m.lifetime.steps);
   EXPECT_EQ(particle_lifetime(scene).fade_steps, m.lifetime.fade_steps);
   EXPECT_EQ(m.lifetime.steps, 24000u);  // 2 s at 30 Hz × 400 sub-steps
-  EXPECT_EQ(particle_cell_count(scene), std::size_t(cell_count(m)));
+  EXPECT_EQ(particle_cell_count(scene), Count(cell_count(m)));
   EXPECT_EQ(cell_count(m), 106u * 71u);  // ⌈47.3 / 0.45⌉ × ⌈31.9 / 0.45⌉
 }
 

@@ -493,6 +493,24 @@ TEST(Hdf5FrameWriter, MissingFolderThrowsNamingThePath) {
   }
 }
 
+// A write failure (issue 13, item 4) names the file and the OS error in one line: HDF5's own text
+// ran over two lines and said "bytes actually written = 18446744073709551615". Here the file is
+// /dev/full, where every write fails with ENOSPC.
+TEST(Hdf5FrameWriter, AWriteFailureNamesTheFileAndTheOsErrorInOneLine) {
+  const fs::path path = test_folder() / "frames.h5";
+  fs::create_symlink("/dev/full", path.string() + ".partial");
+  try {
+    Hdf5FrameWriter writer(path.string(), sample_fields(), kAttributes, 4);
+    FAIL() << "no exception";
+  } catch (const std::runtime_error& error) {
+    const std::string what = error.what();
+    EXPECT_EQ(what.rfind("cannot ", 0), 0u) << what;
+    EXPECT_NE(what.find("HDF5 file '" + path.string() + ".partial': No space left on device"), std::string::npos)
+        << what;
+    EXPECT_EQ(what.find('\n'), std::string::npos) << what;
+  }
+}
+
 TEST(Hdf5FrameWriter, WrongPointerCountIsInvalidArgument) {
   const fs::path path = test_folder() / "frames.h5";
   Hdf5FrameWriter writer(path.string(), sample_fields(), kAttributes, 4);

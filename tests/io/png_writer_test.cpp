@@ -50,6 +50,23 @@ TEST(WritePngRgba, ReadsBackExactlyAndLeavesNoTemporary) {
       << "something beside the PNG was left in " << folder;
 }
 
+// A full disk (issue 13, item 4): stb's own writer ignored fwrite's result and left a short PNG.
+// Here the file is /dev/full, where every write fails with ENOSPC.
+TEST(WritePngRgba, AFullDiskIsReportedWithTheOsErrorAndLeavesNothing) {
+  const fs::path folder = test_output_folder("png_writer");
+  const fs::path path = folder / "frame_000000.png";
+  fs::create_symlink("/dev/full", folder / "frame_000000.png.tmp");
+  const std::vector<std::uint8_t> rgba = pattern();
+  try {
+    write_png_rgba(path.string(), kWidth, kHeight, rgba.data());
+    FAIL() << "no exception";
+  } catch (const std::runtime_error& error) {
+    EXPECT_EQ(std::string(error.what()), "cannot write PNG '" + path.string() + "': No space left on device");
+  }
+  EXPECT_FALSE(fs::exists(path));
+  EXPECT_FALSE(fs::exists(fs::symlink_status(folder / "frame_000000.png.tmp")));
+}
+
 TEST(WritePngRgba, MissingFolderThrowsAndLeavesNothing) {
   const fs::path folder = test_output_folder("png_writer");
   const fs::path path = folder / "png" / "frame_000000.png";

@@ -349,11 +349,28 @@ TEST(ScenarioParticles, LifetimeTooLongToCountInSteps) {
                          "particles.lifetime_s", "a lifetime of 8.64e+04 s is 2.592e+09 steps; at most 2e9"));
 }
 
-TEST(ScenarioParticles, CollisionGridTooLargeIsPlacedAtTheTableWhenCellIsNotWritten) {
-  // A 10 m panel in cells of the range, 0.12·1.3 = 0.156 mm: ⌈64102.6⌉² = 4.109e9 cells.
+TEST(ScenarioParticles, CollisionGridOfTheRangeTooLargeNamesTheDiameter) {
+  // A 10 m panel in cells of the range, 0.12·1.3 = 0.156 mm: ⌈64102.6⌉² = 4.109e9 cells. cell_mm
+  // is not written, so the diameter set the cells.
   const std::string huge = with_line(with_line(particles_with("diameter_mm = 0.12\n"), 4, "width_mm = 10000"), 5,
                                      "height_mm = 10000");
-  EXPECT_TRUE(refused_at(huge, 11, "particles.cell_mm", "the collision grid would have 4.109e+09 cells; at most 4e9"));
+  EXPECT_TRUE(refused_at(huge, kParticlesEnd, "particles.diameter_mm",
+                         "the collision grid would have 4.109e+09 cells of 0.156 mm; at most 4e9"));
+  EXPECT_TRUE(refused_at(with_line(huge, kParticlesEnd, "diameter_mm = 0.12\ncell_mm = 0.156"), kParticlesEnd + 1,
+                         "particles.cell_mm", "the collision grid would have 4.109e+09 cells of 0.156 mm; at most 4e9"));
+}
+
+// Issue 13: a nanometre particle on a 16 x 12 mm panel needs ~1e20 grid cells and more sub-steps
+// than an int holds. Both counts are checked before anything narrows them (a cast of either to
+// int is undefined, and UBSan's float-cast-overflow stops the sanitizer build on it), and the
+// refusal names the diameter, which set them.
+TEST(ScenarioParticles, ATinyDiameterIsRefusedAtItsKeyBeforeAnyCountOverflows) {
+  // The range is 1e-9·1.3 mm: ⌈16 / 1.3e-9⌉ · ⌈12 / 1.3e-9⌉ = 1.136e20 cells, past 2^64.
+  EXPECT_TRUE(refused_at(particles_with("diameter_mm = 1e-9\nsplat_radius_mm = 1.0\n"), kParticlesEnd,
+                         "particles.diameter_mm", "the collision grid would have 1.136e+20 cells"));
+  // With cells large enough for the grid, the contact's stiffness (∝ 1/d²) asks for ~1e13 sub-steps.
+  EXPECT_TRUE(refused_at(particles_with("diameter_mm = 1e-6\ncell_mm = 1.0\n"), kParticlesEnd,
+                         "particles.diameter_mm", "needs more than 100000 sub-steps per frame"));
 }
 
 TEST(ScenarioParticles, UnknownKeySuggestsTheNearest) {

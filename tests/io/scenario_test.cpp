@@ -394,6 +394,27 @@ TEST(ScenarioBadInput, EmptyOutputDir) {
   EXPECT_TRUE(refused_at(kBase + "dir = \"\"\n", kEnd, "output.dir", "must not be empty"));
 }
 
+// Issue 13, item 3: a path the file system cannot hold is refused by validate, at its key.
+TEST(ScenarioBadInput, OutputDirWithANameTooLongForAFileSystem) {
+  EXPECT_TRUE(refused_at(kBase + "dir = \"out/" + std::string(256, 'x') + "\"\n", kEnd, "output.dir",
+                         "holds a name of 256 characters; a file system holds at most 255"));
+  EXPECT_NO_THROW(parse_scenario(kBase + "dir = \"out/" + std::string(255, 'x') + "\"\n", kPath));
+}
+
+// A letter outside a string that toml++ 3.3.0 took into __builtin_unreachable() (core/io/toml.h):
+// it is refused as a syntax error, with its place (the sanitizer build stops on the old behaviour).
+TEST(ScenarioBadInput, NonAsciiCharactersOutsideStringsAreSyntaxErrors) {
+  for (const std::string& text : {kBase + "a = 1\xc3\xa9\n", kBase + "a\xc2\xb5 = 1\n", kBase + "\xc3\xa9\n"}) {
+    try {
+      parse_scenario(text, kPath);
+      ADD_FAILURE() << "accepted " << text;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.where().line, kEnd) << e.what();
+      EXPECT_EQ(e.key(), "") << e.what();
+    }
+  }
+}
+
 TEST(ScenarioBadInput, MissingTexture) {
   const ScratchFolder scratch;
   const std::string texture = (scratch.path() / "nowhere.png").string();
@@ -456,7 +477,7 @@ TEST(LoadScenario, LoadsEveryScenarioInTheRepository) {
       EXPECT_EQ(scene.tissue.width, scene.domain.width_px);
       EXPECT_EQ(scene.tissue.height, scene.domain.height_px);
       EXPECT_FALSE(scene.tissue.rgba.empty());
-      EXPECT_EQ(scene.tissue.rgba.size(), std::size_t(scene.domain.pixel_count()) * 4);
+      EXPECT_EQ(scene.tissue.rgba.size(), scene.domain.pixels().to<std::size_t>() * 4);
     } catch (const InputError& e) {
       ADD_FAILURE() << e.what();
     }

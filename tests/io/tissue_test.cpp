@@ -3,12 +3,14 @@
 #include <gtest/gtest.h>
 #include <stb/stb_image_write.h>
 #include <unistd.h>
+#include <zlib.h>
 
 #include <cerrno>
 #include <cstdint>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -226,6 +228,104 @@ TEST_F(LoadTissuePng, RefusesSizesThatAreNotPositive) {
   const std::string path = write_png("pattern.png", 2, 2, 4, k2x2);
   EXPECT_THROW(load_tissue_png(path, 0, 4, where_, key_), std::invalid_argument);
   EXPECT_THROW(load_tissue_png(path, 4, -1, where_, key_), std::invalid_argument);
+}
+
+
+// ---- Limits (issue 13, item 5): a texture's size is known from its header, before decoding ------
+
+// A PNG signature and an IHDR chunk stating width x height (8-bit RGBA), and nothing after: enough
+// for the header, not for stb to decode.
+std::string png_header(std::uint32_t width, std::uint32_t height) {
+  std::string bytes = std::string("\x89PNG\r\n\x1a\n", 8) + std::string("\0\0\0\x0dIHDR", 8);
+  for (const std::uint32_t v : {width, height})
+    for (int shift = 24; shift >= 0; shift -= 8) bytes += char((v >> shift) & 0xff);
+  return bytes + std::string("\x08\x06\0\0\0", 5);
+}
+
+TEST_F(LoadTissuePng, RefusesATexturePastTheCapFromItsHeaderAlone) {
+  const std::string path = (dir_ / "huge.png").string();
+  std::ofstream(path, std::ios::binary) << png_header(20000, 300);
+  try {
+    load_tissue_png(path, 64, 48, where_, key_);
+    FAIL() << "a 20000 px wide texture was accepted";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), "scenarios/x.toml:12:11: tissue.texture: texture '" + path +
+                                         "' is 20000 x 300 px; a texture may be at most 16384 px on a side (it is "
+                                         "resampled to the panel anyway)");
+  }
+  EXPECT_THROW(read_tissue_png_header(path, where_, key_), InputError) << "bleedsim validate reads only the header";
+}
+
+TEST_F(LoadTissuePng, ReadsTheHeaderAloneAndCountsWhatDecodingTakes) {
+  const std::string path = (dir_ / "header-only.png").string();
+  std::ofstream(path, std::ios::binary) << png_header(1000, 500);
+  const TextureHeader header = read_tissue_png_header(path, where_, key_);
+  EXPECT_EQ(header.width, 1000);
+  EXPECT_EQ(header.height, 500);
+  EXPECT_EQ(header.file_bytes, 29u);
+  // The file, twice the inflated rows (2 · 500 · (1 + 8 · 1000)), the decoded 16-bit RGBA and the
+  // 8-bit copy (12 bytes a pixel).
+  EXPECT_EQ(texture_memory(header, key_).bytes, Count(29 + 2 * 500 * 8001 + 12 * 1000 * 500));
+  EXPECT_EQ(texture_memory(header, key_).key, key_);
+}
+
+// A PNG chunk: its length, type, data and CRC (stb does not check the CRC; zlib's is correct here).
+std::string chunk(const std::string& type, const std::string& data) {
+  std::string out;
+  const auto word = [&out](std::uint32_t v) {
+    for (int shift = 24; shift >= 0; shift -= 8) out += char((v >> shift) & 0xff);
+  };
+  word(std::uint32_t(data.size()));
+  out += type + data;
+  word(std::uint32_t(crc32(crc32(0, reinterpret_cast<const Bytef*>(type.data()), 4),
+                           reinterpret_cast<const Bytef*>(data.data()), uInt(data.size()))));
+  return out;
+}
+
+// stb trusted a PNG past its header: it allocated an IDAT chunk's stated length before reading it (a
+// 426-byte file made it ask for 2 GiB; fuzz/tissue_png_fuzzer), and inflates image data for as
+// long as the stream goes on. Both are refused before stb sees the file.
+TEST_F(LoadTissuePng, RefusesChunksAndImageDataPastWhatTheHeaderStates) {
+  const std::string ihdr = png_header(1, 1).substr(8, 21);  // length, type and data of a 1 x 1 RGBA IHDR
+  const std::string start = std::string("\x89PNG\r\n\x1a\n", 8) + ihdr + std::string(4, '\0');
+  std::string claims = start + std::string("\x7f\xff\xff\xffIDAT", 8) + "short";
+  try {
+    decode_tissue_png(claims, "claims.png", 2, 2, where_, key_);
+    FAIL() << "a 2 GiB chunk in a small file was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("a chunk claims 2147483647 bytes, more than the file holds"),
+              std::string::npos) << e.what();
+  }
+  // 10 MB of zeros compress to ~10 KB; a 1 x 1 image holds 5 bytes of rows.
+  const std::string zeros(10 << 20, '\0');
+  std::string packed(compressBound(uLong(zeros.size())), '\0');
+  uLongf packed_size = uLongf(packed.size());
+  ASSERT_EQ(compress2(reinterpret_cast<Bytef*>(packed.data()), &packed_size,
+                      reinterpret_cast<const Bytef*>(zeros.data()), uLong(zeros.size()), 9), Z_OK);
+  packed.resize(packed_size);
+  const std::string bomb = start + chunk("IDAT", packed) + chunk("IEND", "");
+  try {
+    decode_tissue_png(bomb, "bomb.png", 2, 2, where_, key_);
+    FAIL() << "a deflate bomb was inflated";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("its image data inflates to more than the 1 x 1 px its header states"),
+              std::string::npos) << e.what();
+  }
+}
+
+TEST_F(LoadTissuePng, RefusesToDecodeWhatDoesNotFitTheRoom) {
+  const std::string path = write_png("pattern.png", 2, 2, 4, k2x2);
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes(std::istreambuf_iterator<char>(in), {});
+  EXPECT_EQ(decode_tissue_png(bytes, path, 2, 2, where_, key_).rgba, k2x2);
+  try {
+    decode_tissue_png(bytes, path, 2, 2, where_, key_, 100);
+    FAIL() << "decoded in 100 bytes";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.key(), key_);
+    EXPECT_NE(std::string(e.what()).find("needs"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("but only 100 B is available"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace

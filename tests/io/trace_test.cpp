@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -334,6 +335,67 @@ TEST(TraceRepair, FillsAGapByLinearInterpolationAndReportsIt) {
   EXPECT_EQ(t.samples[6].x_m, 0.0140);
   EXPECT_EQ(t.samples[6].buttons, 0);
   for (std::size_t k = 1; k < t.samples.size(); ++k) EXPECT_NEAR(t.samples[k].t_s - t.samples[k - 1].t_s, 0.001, 1e-12);
+}
+
+
+// ---- Encodings (issue 13, item 7) --------------------------------------------------------------
+
+std::vector<double> times_of(const Trace& trace) {
+  std::vector<double> t;
+  for (const TraceSample& s : trace.samples) t.push_back(s.t_s);
+  return t;
+}
+
+TEST(TraceEncoding, AUtf8ByteOrderMarkIsSkipped) {
+  const Trace t = parse_trace("\xEF\xBB\xBF" + kBase, kPath);
+  EXPECT_EQ(t.metadata.at("device"), "Novint Falcon (bench rig 2)");
+  EXPECT_EQ(times_of(t), times_of(parse_trace(kBase, kPath)));
+  // Columns on the first line count from after the mark, as an editor shows them.
+  EXPECT_TRUE(refused_at("\xEF\xBB\xBF" + with_line(kBase, 1, "# frame: chai3d"), 1, "metadata.frame", {"chai3d"},
+                         10));
+}
+
+TEST(TraceEncoding, AUtf16ByteOrderMarkIsRefusedSayingSo) {
+  EXPECT_TRUE(refused_at("\xFF\xFE#\0 \0d\0", 1, "", {"UTF-16 byte-order mark", "UTF-8"}, 1));
+}
+
+TEST(TraceEncoding, CarriageReturnsAloneAreLocatedAtTheFirst) {
+  std::string cr = kBase;
+  std::replace(cr.begin(), cr.end(), '\n', '\r');
+  // The first line is "# device: Novint Falcon (bench rig 2)", 37 characters: its CR is column 38.
+  EXPECT_TRUE(refused_at(cr, 1, "", {"carriage return (CR) alone ends a line", "LF or CR LF"}, 38));
+  // One in the middle of a file of LF lines is found on its own line.
+  EXPECT_TRUE(refused_at(with_line(kBase, 8, "0.002,0.0104,\r-0.0048,0.1190,1"), 8, "", {"carriage return"}, 14));
+  // CR LF is a line end like LF.
+  std::string crlf;
+  for (const std::string& line : lines_of(kBase)) crlf += line + "\r\n";
+  EXPECT_EQ(times_of(parse_trace(crlf, kPath)), times_of(parse_trace(kBase, kPath)));
+}
+
+// ---- Memory (issue 13, item 5) -----------------------------------------------------------------
+
+TEST(TraceMemory, ATraceIsSizedFromItsLinesBeforeAnyIsRead) {
+  // 10 lines hold 10 samples at most: their memory, and the metadata's, is known before reading.
+  TraceOptions options;
+  options.memory_room = 1000;  // bytes: far less than ten samples and their bookkeeping take
+  EXPECT_TRUE(refused_at(kBase, 0, "", {"a trace of 11 lines needs up to", "of host memory to read, but only 1000 B"},
+                         -1, options));
+  options.memory_room = 1 << 20;
+  TraceOptions unlimited;
+  EXPECT_EQ(times_of(parse_trace(kBase, kPath, options)), times_of(parse_trace(kBase, kPath, unlimited)));
+}
+
+TEST(TraceMemory, RepairsAreCountedBeforeTheyAreMade) {
+  // A 900 ms dropout is repaired into 899 samples: 64 bytes each.
+  const std::string far = with_line(with_line(with_line(kGap, 8, "0.902,0.0140,-0.0020,0.1080,0,4,-2,0.8"), 9,
+                                               "0.903,0.0150,-0.0020,0.1080,0,4,-2,0.8"),
+                                     10, "0.904,0.0160,-0.0020,0.1080,0,4,-2,0.8");
+  TraceOptions options;
+  options.max_repair_gap_s = 1.0;
+  options.memory_room = 40000;  // enough to read ten lines, not for 905 samples
+  EXPECT_TRUE(refused_at(far, 8, "t_s", {"repairing the dropouts adds up to 899 samples", "but only"}, 1, options));
+  options.memory_room.reset();
+  EXPECT_EQ(parse_trace(far, kPath, options).samples.size(), 905u);
 }
 
 }  // namespace

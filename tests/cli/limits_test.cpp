@@ -1,0 +1,114 @@
+// Limits that hold (issue 13, items 2 and 5): sizes are counted before anything narrows them, and
+// every input's memory — the run's, a texture's, a trace's — is counted before it is read or
+// allocated, the refusal naming the key that sets the size. Each case here ran out of memory, or
+// on with a wrong size, before.
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "tests/cli/cli_harness.h"
+
+namespace bleedsim::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+const std::string kScene =
+    "[scene]\n"            // 1
+    "width_px = 64\n"      // 2
+    "height_px = 48\n"     // 3
+    "width_mm = 16.0\n"    // 4
+    "height_mm = 12.0\n"   // 5
+    "duration_s = 0.2\n";  // 6
+
+// Runs `validate` and then `run` on `text`: both must refuse it (exit 2) with each of `expected`,
+// and leave no output folder.
+void expect_both_refuse(const fs::path& dir, const std::string& text, const std::vector<std::string>& expected,
+                        const std::string& shell_prefix = "") {
+  write_text(dir / "s.toml", text);
+  const fs::path out = dir / "out";
+  for (const std::string command : {"validate", "run"}) {
+    const CliResult result = run_cli(command + " '" + (dir / "s.toml").string() + "'" +
+                                         (command == "run" ? " --backend cpu --out '" + out.string() + "'" : ""),
+                                     shell_prefix);
+    EXPECT_EQ(result.exit_code, 2) << command << ": " << result.output;
+    for (const std::string& part : expected)
+      EXPECT_NE(result.output.find(part), std::string::npos) << command << ": no '" << part << "' in " << result.output;
+    EXPECT_FALSE(fs::exists(out)) << command;
+  }
+}
+
+// Item 2: 1e-9 mm particles need ~1e20 grid cells and ~1e13 sub-steps; both overflowed an int,
+// and the run went on with a one-cell grid.
+TEST(Limits, ANanometreParticleIsRefusedAtItsDiameter) {
+  expect_both_refuse(scratch_folder(), kScene + "[particles]\ndiameter_mm = 1e-9\nsplat_radius_mm = 1.0\n",
+                     {"s.toml:8:15: particles.diameter_mm: the collision grid would have 1.136e+20 cells"});
+}
+
+// Item 5: a 400 KB PNG that decodes to 20000 x 20000 px (1.6 GB of RGBA) for a 64 x 48 panel is
+// refused from its header, before a byte of it is decoded.
+TEST(Limits, APngBombIsRefusedFromItsHeader) {
+  const fs::path dir = scratch_folder();
+  const CliResult made = run_shell(
+      "'" + python() + "' -c '\n"
+      "import struct, sys, zlib\n"
+      "def chunk(kind, data): return struct.pack(\">I\", len(data)) + kind + data + struct.pack(\">I\", zlib.crc32(kind + data))\n"
+      "z = zlib.compressobj(9)\n"
+      "rows = b\"\".join(z.compress(bytes(20001)) for _ in range(20000)) + z.flush()\n"
+      "sys.stdout.buffer.write(b\"\\x89PNG\\r\\n\\x1a\\n\" + chunk(b\"IHDR\", struct.pack(\">IIBBBBB\", 20000, 20000, 8, 0, 0, 0, 0))"
+      " + chunk(b\"IDAT\", rows) + chunk(b\"IEND\", b\"\"))\n' > '" + (dir / "bomb.png").string() + "'");
+  ASSERT_EQ(made.exit_code, 0) << made.output;
+  ASSERT_LT(fs::file_size(dir / "bomb.png"), 1u << 20) << "the bomb should be small";
+  expect_both_refuse(dir, kScene + "[tissue]\ntexture = \"bomb.png\"\n",
+                     {"s.toml:8:11: tissue.texture: texture", "is 20000 x 20000 px; a texture may be at most 16384 px"});
+}
+
+// Item 5: validate checks and describes; it draws no tissue and allocates nothing the panel's
+// size. An 8000 x 8000 px panel's tissue alone is 256 MB; validate's whole peak must stay far below.
+TEST(Limits, ValidateAllocatesNothingThePanelsSize) {
+  const fs::path dir = scratch_folder();
+  write_text(dir / "big.toml", "[scene]\nwidth_px = 8000\nheight_px = 8000\nwidth_mm = 80\nheight_mm = 80\n"
+                               "duration_s = 1\n");
+  const CliResult result = run_shell(
+      "'" + python() + "' -c 'import resource, subprocess, sys\n"
+      "code = subprocess.run(sys.argv[1:], stdout=subprocess.DEVNULL).returncode\n"
+      "print(\"exit\", code, \"peak_kib\", resource.getrusage(resource.RUSAGE_CHILDREN).ru_maxrss)' '" +
+      cli_path() + "' validate '" + (dir / "big.toml").string() + "'");
+  ASSERT_NE(result.output.find("exit 0 "), std::string::npos) << result.output;
+  long peak_kib = 0;
+  std::sscanf(result.output.c_str() + result.output.find("peak_kib") + 8, "%ld", &peak_kib);
+  EXPECT_LT(peak_kib, 64 * 1024) << "validate took " << peak_kib << " KiB at its peak";
+}
+
+// Item 5: a 2^28-slot ring needs ~23 GiB; under a 12 GB limit it was refused naming
+// scene.width_px. The key that sets the size is particles.capacity.
+TEST(Limits, ARingTooLargeForMemoryIsRefusedAtItsCapacity) {
+  BLEEDSIM_SKIP_UNLESS_ADDRESS_SPACE_CAN_BE_LIMITED();
+  expect_both_refuse(scratch_folder(), kScene + "[particles]\ncapacity = 268435456\n",
+                     {"s.toml:8:12: particles.capacity: this scene needs", "268435456 particle slots",
+                      "of host memory"},
+                     "ulimit -v 12000000;");
+}
+
+// Item 5: a trace is sized from its lines before it is read. 2.5 million samples take ~190 MB as
+// loaded; under a 150 MB limit the whole text and its lines used to end in a bare std::bad_alloc.
+TEST(Limits, ATraceTooLargeForMemoryIsRefusedAtItsKey) {
+  BLEEDSIM_SKIP_UNLESS_ADDRESS_SPACE_CAN_BE_LIMITED();
+  const fs::path dir = scratch_folder();
+  {
+    std::ofstream trace(dir / "long.csv");
+    trace << "# device: Novint Falcon\n# frame: libnifalcon\n# rate_hz: 1000\nt_s,x_m,y_m,z_m,buttons\n";
+    char line[64];
+    for (int n = 0; n < 2'500'000; ++n) {
+      std::snprintf(line, sizeof line, "%d.%03d,0,0,0.1,0\n", n / 1000, n % 1000);
+      trace << line;
+    }
+  }
+  expect_both_refuse(dir, kScene + "[haptics]\ntrace = \"long.csv\"\n",
+                     {"s.toml:8:9: haptics.trace: this scene needs", "for a trace of 2500005 lines", "host memory"},
+                     "ulimit -v 150000;");
+}
+
+}  // namespace
+}  // namespace bleedsim::test

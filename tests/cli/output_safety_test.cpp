@@ -1,0 +1,232 @@
+// Nothing lost, nothing half-written (issue 13, items 1, 3, 4 and 6; docs/reliability.md): one run
+// at a time per output folder, a finished run's files swapped in together, a failed write ending the
+// run in one line with its frames kept and the folder's last whole run untouched. Every file is
+// read back by h5py, an independent reader.
+#include <unistd.h>
+
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "tests/cli/cli_harness.h"
+
+namespace bleedsim::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string scenario(const std::string& name) { return (fs::path(source_dir()) / "scenarios" / name).string(); }
+
+std::string quoted(const fs::path& path) { return "'" + path.string() + "'"; }
+
+// What h5py reads of a frames file: whether it opens, and its completion, frame count and scene.
+struct H5Read {
+  bool opens = false;
+  int complete = -1;
+  long frames_written = -1;
+  long frames_stored = -1;
+  std::string scene;
+  std::string error;
+};
+
+H5Read read_with_h5py(const fs::path& file) {
+  const CliResult result = run_shell(
+      "'" + python() + "' -c 'import h5py, sys\n"
+      "with h5py.File(sys.argv[1], \"r\") as f:\n"
+      "    print(int(f.attrs[\"complete\"]), int(f.attrs[\"frames_written\"]), f[\"frame\"].shape[0], "
+      "f.attrs[\"scene_name\"])' " + quoted(file));
+  H5Read read;
+  std::istringstream fields(result.output);
+  read.opens = result.exit_code == 0 && bool(fields >> read.complete >> read.frames_written >> read.frames_stored >> read.scene);
+  if (!read.opens) read.error = result.output;
+  return read;
+}
+
+std::vector<std::string> entries(const fs::path& dir) {
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename().string());
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+// A scene of `frames` frames of 256 x 192 px with the spread: long enough to be caught running.
+fs::path write_scene(const fs::path& dir, const std::string& name, int frames) {
+  const fs::path file = dir / (name + ".toml");
+  write_text(file, "[scene]\nname = \"" + name + "\"\nwidth_px = 256\nheight_px = 192\nwidth_mm = 16\nheight_mm = 12\n"
+                   "duration_s = " + std::to_string(frames / 30.0) + "\n[spread]\n[[cut]]\nx_mm = 8\ny_mm = 6\n");
+  return file;
+}
+
+std::string run_into(const fs::path& scene, const fs::path& out, const std::string& extra = "") {
+  return "'" + cli_path() + "' run " + quoted(scene) + " --backend cpu -q --out " + quoted(out) + " " + extra;
+}
+
+// Item 1. Two runs into one folder: the second truncated the first's open HDF5 file (bytes 137 to
+// 16 MB zeroed) and the first still said complete=1. The second must be refused before it opens
+// anything, naming the folder and the first run's pid, and the first must end whole.
+TEST(OutputSafety, ASecondRunIntoABusyFolderIsRefusedAndTheFirstEndsWhole) {
+  const fs::path dir = scratch_folder(), out = dir / "X";
+  const fs::path first = write_scene(dir, "first", 150);
+  const CliResult result = run_shell(
+      run_into(first, out) + " & pid=$!; for i in $(seq 500); do [ -e " + quoted(out / ".bleedsim.lock") +
+      " ] && break; sleep 0.01; done; " + run_into(scenario("tissue-only.toml"), out) +
+      "; echo \"second=$? first_pid=$pid\"; wait $pid; echo \"first=$?\"");
+  EXPECT_NE(result.output.find("first=0"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("second=2"), std::string::npos) << result.output;
+  const std::string pid = result.output.substr(result.output.find("first_pid=") + 10);
+  EXPECT_NE(result.output.find("bleedsim: error: --out: output folder '" + out.string() +
+                               "' is in use by another bleedsim run (pid " + pid.substr(0, pid.find('\n')) + ")"),
+            std::string::npos)
+      << result.output;
+  const H5Read read = read_with_h5py(out / "frames.h5");
+  ASSERT_TRUE(read.opens) << read.error;
+  EXPECT_EQ(read.complete, 1);
+  EXPECT_EQ(read.frames_written, 150);
+  EXPECT_EQ(read.frames_stored, 150);
+  EXPECT_EQ(read.scene, "first");
+  EXPECT_EQ(entries(out), std::vector<std::string>({"frames.h5"})) << "no lock, partial or swap folder left";
+}
+
+// Item 6. A run that writes no PNGs left the previous run's PNGs and contact sheet beside its own
+// frames.h5; a failed run deleted the old PNGs but kept the old frames.h5.
+TEST(OutputSafety, TheFolderShowsOneWholeRunNeverAMix) {
+  const fs::path dir = scratch_folder(), out = dir / "out";
+  const fs::path with_pngs = write_scene(dir, "with-pngs", 12), without = write_scene(dir, "without", 9);
+  ASSERT_EQ(run_shell(run_into(with_pngs, out, "--png-every 4 --contact-sheet 3")).exit_code, 0);
+  EXPECT_EQ(entries(out), std::vector<std::string>({"contact_sheet.png", "frames.h5", "png"}));
+
+  const CliResult second = run_shell(run_into(without, out));
+  ASSERT_EQ(second.exit_code, 0) << second.output;
+  EXPECT_EQ(entries(out), std::vector<std::string>({"frames.h5"})) << "the first run's PNGs outlived it";
+  EXPECT_EQ(read_with_h5py(out / "frames.h5").scene, "without");
+
+  // A run that fails (its file may not grow past 300 KB) leaves the last whole run as it was.
+  const std::string before = read_bytes(out / "frames.h5");
+  const CliResult failed = run_shell("ulimit -f 300; " + run_into(with_pngs, out, "--png-every 1 --contact-sheet 3"));
+  EXPECT_EQ(failed.exit_code, 1) << failed.output;
+  EXPECT_EQ(read_bytes(out / "frames.h5"), before);
+  EXPECT_EQ(entries(out), std::vector<std::string>({".bleedsim-partial", "frames.h5"}));
+}
+
+// Item 4. Under `ulimit -f` the run died of SIGXFSZ without a word (exit 153). A write failure ends
+// the run with exit 1 and one line naming the file and the OS error; the finished frames stay, in a
+// file that opens; the last whole run is untouched.
+TEST(OutputSafety, AFileSizeLimitEndsTheRunInOneLineKeepingItsFrames) {
+  const fs::path dir = scratch_folder(), out = dir / "out";
+  const fs::path scene = write_scene(dir, "limited", 60);
+  ASSERT_EQ(run_shell(run_into(scene, out)).exit_code, 0);
+  const std::string before = read_bytes(out / "frames.h5");
+  // 2000 KiB holds some of the 60 frames, not all.
+  const CliResult result = run_shell("ulimit -f 2000; " + run_into(scene, out));
+  EXPECT_EQ(result.exit_code, 1) << result.output;
+  const fs::path partial = out / ".bleedsim-partial" / "frames.h5.partial";
+  EXPECT_EQ(result.output.rfind("bleedsim: failed: cannot write frame ", 0), 0u) << result.output;
+  EXPECT_NE(result.output.find("to HDF5 file '" + partial.string() + "': File too large"), std::string::npos)
+      << result.output;
+  EXPECT_EQ(std::count(result.output.begin(), result.output.end(), '\n'), 1) << result.output;
+  EXPECT_EQ(read_bytes(out / "frames.h5"), before);
+  const H5Read read = read_with_h5py(partial);
+  ASSERT_TRUE(read.opens) << read.error;
+  EXPECT_EQ(read.complete, 0);
+  EXPECT_GE(read.frames_written, 1);
+  EXPECT_LT(read.frames_written, 60);
+  EXPECT_NE(result.output.find(std::to_string(read.frames_written) + " finished frames kept in"), std::string::npos)
+      << result.output;
+}
+
+// A small file system of its own (tmpfs in a user and mount namespace, no privileges needed) to
+// fill: `script` (written to `dir`) runs in it, as its working folder. Skips where the kernel
+// allows no user namespaces.
+CliResult on_a_small_disk(const fs::path& dir, const std::string& size, const std::string& script) {
+  write_text(dir / "on-small-disk.sh", "set -u\nT=$(mktemp -d)\nmount -t tmpfs -o size=" + size +
+                                           " none \"$T\" || exit 90\ncd \"$T\"\n" + script);
+  return run_shell("unshare --user --map-root-user --mount sh " + quoted(dir / "on-small-disk.sh"));
+}
+
+bool small_disks_available() {
+  return run_shell("unshare --user --map-root-user --mount sh -c 'mount -t tmpfs none \"$(mktemp -d)\"'").exit_code == 0;
+}
+
+// Item 4. A disk full before the first frame exited 2, as if the input were bad, and left
+// frames.h5.partial; full mid-run, the message came on two lines with "bytes actually written =
+// 18446744073709551615". Now: exit 1, one line with the OS error, the last whole run untouched.
+TEST(OutputSafety, AFullDiskEndsTheRunInOneLineLeavingTheLastRunWhole) {
+  if (!small_disks_available()) GTEST_SKIP() << "no user namespaces here: cannot make a small file system to fill";
+  const fs::path dir = scratch_folder();
+  const fs::path scene = write_scene(dir, "filling", 60), small = write_scene(dir, "small", 3);
+  const std::string cli = "'" + cli_path() + "' ";
+  const std::string run_small = cli + "run " + quoted(small) + " --backend cpu -q --out out";
+  // Run 1 fits; run 2 fills the disk part way (mid-run); then the disk is filled outright and run 3
+  // finds no room before its first frame.
+  const CliResult result = on_a_small_disk(
+      dir, "3m",
+      run_small + "; echo run1=$?; cp out/frames.h5 saved.h5\n" +
+          cli + "run " + quoted(scene) + " --backend cpu -q --out out; echo run2=$?\n"
+          "cmp out/frames.h5 saved.h5 && echo kept2\n"
+          "'" + python() + "' -c 'import h5py, sys; f = h5py.File(sys.argv[1], \"r\"); "
+          "print(\"#\", int(f.attrs[\"complete\"]), int(f.attrs[\"frames_written\"]))' "
+          "out/.bleedsim-partial/frames.h5.partial\n"
+          "rm -rf out/.bleedsim-partial; cat /dev/zero > filler 2>/dev/null\n" +
+          run_small + "; echo run3=$?; cmp out/frames.h5 saved.h5 && echo kept3\n");
+  const std::string& o = result.output;
+  EXPECT_NE(o.find("run1=0"), std::string::npos) << o;
+  EXPECT_NE(o.find("run2=1"), std::string::npos) << o;
+  EXPECT_NE(o.find("run3=1"), std::string::npos) << o;
+  EXPECT_NE(o.find("kept2"), std::string::npos) << o;
+  EXPECT_NE(o.find("kept3"), std::string::npos) << o;
+  EXPECT_NE(o.find("'out/.bleedsim-partial/frames.h5.partial': No space left on device"), std::string::npos) << o;
+  EXPECT_EQ(o.find("bleedsim: error:"), std::string::npos) << "a full disk is not bad input: " << o;
+  EXPECT_EQ(o.find("18446744073709551615"), std::string::npos) << o;
+  // Each failure is one line: "bleedsim: failed: ...".
+  std::istringstream lines(o);
+  for (std::string line; std::getline(lines, line);)
+    if (line.rfind("bleedsim", 0) != 0 && line.rfind("run", 0) != 0 && line.rfind("kept", 0) != 0 &&
+        line.rfind("# ", 0) != 0)
+      ADD_FAILURE() << "a line that is no message of its own: '" << line << "' in " << o;
+  // Run 2's finished frames open, and are some of its 60.
+  const std::size_t at = o.find("# 0 ");
+  ASSERT_NE(at, std::string::npos) << "the partial file of the run cut short did not open: " << o;
+  const long kept = std::stol(o.substr(at + 4));
+  EXPECT_GE(kept, 1) << o;
+  EXPECT_LT(kept, 60) << o;
+}
+
+// A run killed outright (SIGKILL) stops wherever it is: the folder's last whole run is untouched,
+// and the killed run's frames, each flushed as it was written, open in its partial file.
+TEST(OutputSafety, AKilledRunLeavesTheLastRunWholeAndItsOwnFramesReadable) {
+  const fs::path dir = scratch_folder(), out = dir / "out";
+  ASSERT_EQ(run_shell(run_into(write_scene(dir, "done", 3), out)).exit_code, 0);
+  const std::string before = read_bytes(out / "frames.h5");
+  const fs::path partial = out / ".bleedsim-partial" / "frames.h5.partial";
+  const CliResult result = run_shell(
+      run_into(write_scene(dir, "killed", 3000), out) + " & pid=$!; for i in $(seq 1000); do "
+      "[ -s " + quoted(partial) + " ] && break; sleep 0.01; done; sleep 1; kill -KILL $pid; wait $pid; echo \"exit=$?\"");
+  EXPECT_NE(result.output.find("exit=137"), std::string::npos) << result.output;
+  EXPECT_EQ(read_bytes(out / "frames.h5"), before);
+  const H5Read read = read_with_h5py(partial);
+  ASSERT_TRUE(read.opens) << read.error;
+  EXPECT_EQ(read.scene, "killed");
+  EXPECT_EQ(read.complete, 0);
+  EXPECT_GE(read.frames_written, 1);
+}
+
+// A run killed in the middle of its swap leaves .bleedsim-swap; the next run in the folder
+// completes that swap before anything else, so the folder shows the killed run's files, whole, even
+// when the next run then fails.
+TEST(OutputSafety, AHalfDoneSwapIsCompletedByTheNextRun) {
+  const fs::path dir = scratch_folder(), out = dir / "out", other = dir / "other";
+  ASSERT_EQ(run_shell(run_into(write_scene(dir, "older", 3), out, "--png-every 1")).exit_code, 0);
+  ASSERT_EQ(run_shell(run_into(write_scene(dir, "swapped", 4), other)).exit_code, 0);
+  // The state a kill leaves just after the commit: the new run's files in the swap folder, the
+  // older run's where they were.
+  fs::create_directory(out / ".bleedsim-swap");
+  fs::copy_file(other / "frames.h5", out / ".bleedsim-swap" / "frames.h5");
+  const CliResult failed = run_shell("ulimit -f 100; " + run_into(write_scene(dir, "failing", 30), out));
+  EXPECT_EQ(failed.exit_code, 1) << failed.output;
+  EXPECT_EQ(read_bytes(out / "frames.h5"), read_bytes(other / "frames.h5"));
+  EXPECT_EQ(entries(out), std::vector<std::string>({".bleedsim-partial", "frames.h5"})) << "the older run's PNGs stayed";
+}
+
+}  // namespace
+}  // namespace bleedsim::test
