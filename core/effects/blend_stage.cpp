@@ -27,11 +27,12 @@ std::vector<float> optics_tables() {
   for (int b = 0; b < kSrgbBytes; ++b) t.push_back(float(linear_from_code(b / 255.0)));
   for (int k = 0; k + 1 < kSrgbBytes; ++k) t.push_back(float(linear_from_code((k + 0.5) / 255.0)));
   for (int k = 0; k < kTransmissionEntries; ++k) t.push_back(float(std::exp(-double(k) / kTransmissionStepsPerUnit)));
-  const float* boundaries = t.data() + kSrgbBytes;
+  // Indexed, not through a pointer: the push_back below may move the table.
+  const std::size_t boundaries = kSrgbBytes;
   int reached = 0;
   for (int k = 0; k < kSrgbBuckets; ++k) {
     const float start = float(k) / float(kSrgbBuckets);  // exact
-    while (reached < kSrgbBytes - 1 && boundaries[reached] <= start) ++reached;
+    while (reached < kSrgbBytes - 1 && t[boundaries + reached] <= start) ++reached;
     t.push_back(float(reached));
   }
   return t;
