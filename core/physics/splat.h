@@ -106,10 +106,29 @@ BLEEDSIM_HD inline std::size_t pixel_containing(const PixelGrid& g, float x, flo
   return std::size_t(j) * std::size_t(g.width) + std::size_t(i);
 }
 
-// blood · weight / total, rounded half up, in integers: exact, so the same on both backends.
-// blood < 2³⁰ and weight ≤ 2²³, so 2 · blood · weight stays far inside 64 bits.
-BLEEDSIM_HD inline std::uint64_t share_of(std::uint64_t blood, std::uint64_t weight, std::uint64_t total) {
-  return (2 * blood * weight + total) / (2 * total);
+// A particle's shares are blood · weight / total, rounded half up: the integer quotient
+//   ⌊(2 · blood · weight + total) / (2 · total)⌋,
+// exact, so the same on both backends. A 64-bit integer division is a long subroutine on the GPU,
+// so the quotient is estimated in double from the particle's one reciprocal and then corrected.
+// blood < 2³⁰ and weight ≤ 2²³ keep the numerator below 2⁵⁵, and 2 · total (a footprint's whole
+// units) is exact in double. The estimate carries three roundings, each of relative size ≤ 2⁻⁵³,
+// so it lies within 2³⁰ · 3 · 2⁻⁵³ < 2⁻²¹ of the quotient: truncated, it is off by at most one,
+// either way, and one comparison each way makes it exact.
+struct ShareDivisor {
+  std::uint64_t twice_total;
+  double inverse;  // 1 / (2 · total), rounded
+};
+
+BLEEDSIM_HD inline ShareDivisor share_divisor(std::uint64_t total) { return {2 * total, 1.0 / double(2 * total)}; }
+
+BLEEDSIM_HD inline std::uint64_t share_of(std::uint64_t blood, std::uint64_t weight, const ShareDivisor& d) {
+  const std::uint64_t numerator = 2 * blood * weight + d.twice_total / 2;
+  std::uint64_t quotient = std::uint64_t(double(numerator) * d.inverse);
+  if (quotient * d.twice_total > numerator)
+    --quotient;
+  else if (numerator - quotient * d.twice_total >= d.twice_total)
+    ++quotient;
+  return quotient;
 }
 
 // Calls deposit(pixel, units) for each pixel that receives a share of the particle in `slot`: one
@@ -128,10 +147,9 @@ BLEEDSIM_HD inline void splat_particle(const SplatArgs& a, int slot, Deposit dep
     deposit(pixel_containing(a.grid, x, y), blood);
     return;
   }
+  const ShareDivisor divisor = share_divisor(total);
   for_each_weight(a.splat, a.grid, f, [&](std::size_t pixel, std::uint64_t w) {
-    // A pixel holding all the weight takes all the blood: share_of's own answer, without its
-    // 64-bit division (slow on the GPU), on panels whose pixels are as coarse as the splat.
-    const std::uint64_t units = w == total ? blood : share_of(blood, w, total);
+    const std::uint64_t units = share_of(blood, w, divisor);
     if (units != 0) deposit(pixel, units);
   });
 }

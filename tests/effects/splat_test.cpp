@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <numeric>
@@ -69,6 +70,41 @@ struct Film {
 //  - each of its n deposits is its share T · wₚ / S rounded half up, exactly in integers: the
 //    deposits add up to T within n/2 units (n: the pixels whose centres the splat reaches; where
 //    it reaches none, all of T goes into one pixel, exactly).
+// A share is the integer quotient ⌊(2·blood·weight + total) / (2·total)⌋ (splat.h): its estimate in
+// double, corrected, must equal the integer division exactly, over the whole range the splat allows
+// (blood < 2³⁰, weight ≤ 2²³, total from a weight up to 2²⁰ of them and beyond) and at the
+// quotients where a correction is needed: the estimate of a whole quotient falls just short, or that of
+// one just below a whole number reaches it (each removed correction fails this test).
+TEST(Splat, AShareIsTheExactIntegerQuotient) {
+  const auto exact = [](std::uint64_t blood, std::uint64_t weight, std::uint64_t total) {
+    return (2 * blood * weight + total) / (2 * total);
+  };
+  const std::uint64_t max_blood = std::uint64_t(kMaxDepositUnits) + 1, max_weight = std::uint64_t(kSplatWeightUnits);
+  std::vector<std::array<std::uint64_t, 3>> cases = {
+      {max_blood, max_weight, max_weight},     {max_blood, max_weight, max_weight + 1}, {max_blood, 1, 1},
+      {max_blood, max_weight - 1, max_weight}, {1, 1, 2},                             {3, 1, 2},
+      {max_blood, 1, max_weight << 20},        {max_blood, max_weight, 3 * max_weight}, {0, max_weight, 7},
+      // Found by search: quotients that are whole, whose estimate falls just below (corrected up) ...
+      {531969375, 1978348, 420968219637000},   {747144855, 35334, 3519948840876},       {566537776, 487224, 184020534249216},
+      // ... and quotients just below a whole number, whose estimate reaches it (corrected down).
+      {987103834, 4220868, 14386925},          {980694921, 7463415, 24309997},          {998224321, 2912337, 5205739}};
+  std::uint64_t state = 0x9e3779b97f4a7c15u;  // splitmix64: a fixed stream, so the test is repeatable
+  const auto next = [&] {
+    std::uint64_t z = (state += 0x9e3779b97f4a7c15u);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9u;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebu;
+    return z ^ (z >> 31);
+  };
+  for (int k = 0; k < 1000000; ++k) {
+    const std::uint64_t weight = 1 + next() % max_weight;
+    const std::uint64_t total = weight + next() % (max_weight << (next() % 21));
+    cases.push_back({next() % max_blood, weight, total});
+  }
+  for (const auto& [blood, weight, total] : cases)
+    ASSERT_EQ(share_of(blood, weight, share_divisor(total)), exact(blood, weight, total))
+        << "blood " << blood << ", weight " << weight << ", total " << total;
+}
+
 TEST(Splat, AParticlesFilmHoldsItsVolumeOnAnyPixelPitch) {
   const float r = 0.2f;
   const double blood_mm3 = ParticleParams{}.particle_volume_mm3;
