@@ -88,10 +88,15 @@ BLEEDSIM_HD inline float reflected_to_lens(const Headlight& l, float x_mm, float
                                            float slope_y) {
   const float vx = l.x_mm - x_mm, vy = l.y_mm - y_mm, vz = l.height_mm - z_mm;
   const float v_inverse = 1.0f / sqrtf(vx * vx + vy * vy + vz * vz);
-  const float n_inverse = 1.0f / sqrtf(slope_x * slope_x + slope_y * slope_y + 1.0f);
   const float upright = vz * v_inverse;  // n·v for the panel's own normal
-  const float facing = (vz - slope_x * vx - slope_y * vy) * v_inverse * n_inverse;
-  const float relief = facing > 0.0f ? integer_power(facing, l.shininess) - integer_power(upright, l.shininess) : 0.0f;
+  float relief = 0.0f;
+  // Where the film is level its facing is, to the bit, upright (the slopes' products are zeros and
+  // n_inverse is 1), so its relief is exactly 0: most of a frame skips the lobes' work.
+  if (slope_x != 0.0f || slope_y != 0.0f) {
+    const float n_inverse = 1.0f / sqrtf(slope_x * slope_x + slope_y * slope_y + 1.0f);
+    const float facing = (vz - slope_x * vx - slope_y * vy) * v_inverse * n_inverse;
+    if (facing > 0.0f) relief = integer_power(facing, l.shininess) - integer_power(upright, l.shininess);
+  }
   return l.sheen * integer_power(upright, l.sheen_shininess) + l.specular * fmaxf(relief, 0.0f);
 }
 
