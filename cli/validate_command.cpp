@@ -68,7 +68,9 @@ void describe_particles(const Scene& scene, std::int64_t stylus_cuts) {
     cuts.back().wound_mm = scene.haptics->cut_spacing_mm;
   }
   double alive = 0;
-  for (const Cut& cut : cuts) alive += std::floor(cut_blood_mm3(cut, cut.start_s + p.lifetime_s) / p.particle_volume_mm3);
+  const PulseParams* pulse = scene.pulse ? &*scene.pulse : nullptr;
+  for (const Cut& cut : cuts)
+    alive += std::floor(cut_blood_mm3(cut, cut.start_s + p.lifetime_s, pulse) / p.particle_volume_mm3);
   if (alive > p.capacity)
     std::printf("warning: the cuts can have up to %.0f particles alive at once (what each bleeds within a %.3g s "
                 "lifetime), more than the ring's %d slots: it will overwrite live blood; raise "

@@ -56,10 +56,15 @@ HapticStep HapticLoop::tick(const DeviceSample& sample) {
   if (!r.cutting) {
     last_cut_mm_.reset();
   } else if (!last_cut_mm_ || (r.panel_mm - *last_cut_mm_).norm() >= params_.cut_spacing_mm) {
-    last_cut_mm_ = r.panel_mm;
-    // Each cut stands for the stroke's wound up to the next, cut_spacing_mm of it: the stroke
-    // bleeds by its length, however finely it is cut.
+    // Each cut stands for cut_spacing_mm of the stroke's wound, centred on it, in the direction the
+    // stroke came from its last cut (along x for a stroke's first): the stroke bleeds by its
+    // length, however finely it is cut, and from the vessels along its path.
     Cut cut = cut_template_;
+    if (last_cut_mm_) {
+      const Eigen::Vector2d travel = r.panel_mm - *last_cut_mm_;
+      cut.wound_angle_deg = std::atan2(travel.y(), travel.x()) * 180.0 / 3.14159265358979323846;
+    }
+    last_cut_mm_ = r.panel_mm;
     cut.x_mm = r.panel_mm.x();
     cut.y_mm = r.panel_mm.y();
     cut.start_s = r.t_s;

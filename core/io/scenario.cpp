@@ -322,14 +322,31 @@ void read_tissue(Reader& r, const toml::table& root, Scenario& s, ReadTissue how
   Scene& scene = s.scene;
   MemoryParts parts = Pipeline::memory(scene);
   parts.push_back(scene.domain.memory(4));
-  const SourcePlace texture_place = s.place_of("tissue.texture");
+  const SourcePlace texture_place = s.place_of("tissue.texture"), map_place = s.place_of("vessels.map");
+  const auto beside_the_scenario = [&](const std::string& name) {
+    fs::path file = name;
+    if (file.is_relative()) file = fs::path(s.path).parent_path() / file;
+    return file.lexically_normal().string();
+  };
+  const bool procedural_vessels = scene.vessels && scene.vessels->map == "procedural";
+  if (procedural_vessels && !tissue.texture.empty())
+    throw s.placed(InputError(SourcePlace{}, "vessels.map",
+                     "\"procedural\" reads the procedural tissue's vessels, and this scene's tissue is a texture: "
+                     "name a PNG map of its vessels"));
   scene.tissue_source = "procedural";
   if (!tissue.texture.empty()) {
-    fs::path file = tissue.texture;
-    if (file.is_relative()) file = fs::path(s.path).parent_path() / file;
-    scene.tissue_source = file.lexically_normal().string();
+    scene.tissue_source = beside_the_scenario(tissue.texture);
     parts.push_back(texture_memory(read_tissue_png_header(scene.tissue_source, texture_place, "tissue.texture"),
                                    "tissue.texture"));
+  }
+  // The vessels' map, like the tissue's texture: the PNG's header read and its memory counted first.
+  std::string map_file;
+  if (scene.vessels) {
+    parts.push_back({"vessels.map", "the vessel density map", scene.domain.pixels() * Count(sizeof(float))});
+    if (!procedural_vessels) {
+      map_file = beside_the_scenario(scene.vessels->map);
+      parts.push_back(texture_memory(read_tissue_png_header(map_file, map_place, "vessels.map"), "vessels.map"));
+    }
   }
   try {
     require_memory(parts, available_host_memory(), "host");
@@ -341,6 +358,13 @@ void read_tissue(Reader& r, const toml::table& root, Scenario& s, ReadTissue how
   scene.tissue = tissue.texture.empty()
                      ? procedural_tissue(d.width_px, d.height_px, scene.seed)
                      : load_tissue_png(scene.tissue_source, d.width_px, d.height_px, texture_place, "tissue.texture");
+  if (procedural_vessels) scene.vessel_density = procedural_vessel_density(d.width_px, d.height_px, scene.seed);
+  if (!map_file.empty()) {
+    const Image map = load_tissue_png(map_file, d.width_px, d.height_px, map_place, "vessels.map");
+    scene.vessel_density.resize(std::size_t(d.width_px) * std::size_t(d.height_px));
+    for (std::size_t p = 0; p < scene.vessel_density.size(); ++p)
+      scene.vessel_density[p] = float(map.rgba[4 * p]) / 255.0f;
+  }
 }
 
 }  // namespace
@@ -364,7 +388,8 @@ InputError Scenario::placed(const InputError& error) const {
 std::vector<TableView> scenario_tables() {
   return {describe(scene_table()),    describe(tissue_table()), describe(spread_table()),
           describe(particle_table()), describe(blur_table()),   describe(trail_table()),
-          describe(optics_table()),   describe(haptic_table()), describe(cut_table()),
+          describe(optics_table()),   describe(pulse_table()),  describe(vessel_table()),
+          describe(haptic_table()),   describe(cut_table()),
           describe(output_table())};
 }
 
@@ -400,6 +425,8 @@ Scenario parse_scenario(const std::string& text, const std::string& path, ReadTi
   read_effect(r, root, blur_table(), s.scene.blur, s.scene);
   read_effect(r, root, trail_table(), s.scene.trail, s.scene);
   read_effect(r, root, optics_table(), s.scene.optics, s.scene);
+  read_effect(r, root, pulse_table(), s.scene.pulse, s.scene);
+  read_effect(r, root, vessel_table(), s.scene.vessels, s.scene);
   read_cuts(r, root, s);
   read_haptics(r, root, s);
   r.read(r.table(root, "output"), output_table(), s.output, s.scene, "output");

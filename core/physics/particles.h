@@ -105,6 +105,7 @@ struct Emitter {
   std::uint64_t first_id;
   std::uint32_t first_new;
   std::uint32_t count;
+  float speed_scale = 1.0f;  // the emission velocity's multiple this step: a pulse's spurt, else 1
 };
 
 enum class ParticlePhase { emit, bin, collide, integrate };
@@ -158,8 +159,8 @@ BLEEDSIM_HD inline void emit_particle(const ParticleArgs& a, int t) {
   };
   a.arrays.position[2 * slot] = reflect_inside(from.x_mm + m.jitter_mm * jitter(0), m.min_x, m.max_x);
   a.arrays.position[2 * slot + 1] = reflect_inside(from.y_mm + m.jitter_mm * jitter(1), m.min_y, m.max_y);
-  a.arrays.velocity[2 * slot] = m.velocity_x + m.velocity_jitter * jitter(2);
-  a.arrays.velocity[2 * slot + 1] = m.velocity_y + m.velocity_jitter * jitter(3);
+  a.arrays.velocity[2 * slot] = m.velocity_x * from.speed_scale + m.velocity_jitter * jitter(2);
+  a.arrays.velocity[2 * slot + 1] = m.velocity_y * from.speed_scale + m.velocity_jitter * jitter(3);
   a.arrays.age[slot] = 0;
 }
 

@@ -20,6 +20,9 @@ ParamProblem defaults_from_scene(Cut& cut, const Written& written, const Scene& 
     if (!written.has(key)) cut.*member = wound.*member;
   for (const char* key : {"wound_mm", "flow_mm3_per_s_per_mm", "bleed_s", "clot_s"})
     if (written.has(key) && !scene.particles) return {key, "has no effect: this scene declares no [particles]"};
+  if (written.has("arterial") && !scene.pulse) return {"arterial", "has no effect: this scene declares no [pulse]"};
+  if (written.has("wound_angle_deg") && !scene.vessels)
+    return {"wound_angle_deg", "has no effect: this scene declares no [vessels]"};
   return {};
 }
 
@@ -48,10 +51,17 @@ ParamProblem countable(const Cut& cut, const Scene& scene) {
 
 }  // namespace
 
-double cut_blood_mm3(const Cut& cut, double t_s) {
+double cut_blood_mm3(const Cut& cut, double t_s, const PulseParams* pulse) {
   const double bleeding_s = std::clamp(t_s - cut.start_s, 0.0, cut.bleed_s);
-  const double flowing_s = cut.clot_s > 0.0 ? cut.clot_s * -std::expm1(-bleeding_s / cut.clot_s) : bleeding_s;
-  return cut.wound_mm * cut.flow_mm3_per_s_per_mm * flowing_s;
+  const double flowing_s =
+      cut.arterial && pulse ? pulsed_flowing_s(*pulse, cut.start_s, bleeding_s, cut.clot_s)
+      : cut.clot_s > 0.0    ? cut.clot_s * -std::expm1(-bleeding_s / cut.clot_s)
+                            : bleeding_s;
+  return cut.wound_mm * cut.vessel_density * cut.flow_mm3_per_s_per_mm * flowing_s;
+}
+
+double cut_exit_speed_scale(const Cut& cut, double t_s, const PulseParams* pulse) {
+  return cut.arterial && pulse ? pulse_waveform(*pulse, t_s) : 1.0;
 }
 
 const ParamTable<Cut>& cut_table() {
@@ -79,7 +89,12 @@ const ParamTable<Cut>& cut_table() {
        {"bleed_s", T::number, BLEEDSIM_MEMBER(P, bleed_s), "s", param_named(flow, "bleed_s").range,
         "how long it bleeds", "[particles].bleed_s"},
        {"clot_s", T::number, BLEEDSIM_MEMBER(P, clot_s), "s", param_named(flow, "clot_s").range,
-        "the flow falls as exp(−t / clot_s) after the cut; 0: it does not", "[particles].clot_s"}},
+        "the flow falls as exp(−t / clot_s) after the cut; 0: it does not", "[particles].clot_s"},
+       {"arterial", T::flag, BLEEDSIM_MEMBER(P, arterial), "", {},
+        "it spurts with the heartbeat; only with [pulse]",
+        "false, or with [vessels] whether its wound reaches [pulse].arterial_density"},
+       {"wound_angle_deg", T::number, BLEEDSIM_MEMBER(P, wound_angle_deg), "°", {-360, 360},
+        "the wound's direction (0: along x, 90: along y), centred on the cut; only with [vessels]"}},
       {{"the cut lies on the panel: 0 ≤ x_mm ≤ width_mm, 0 ≤ y_mm ≤ height_mm", on_the_panel},
        {"with [particles], wound_mm × flow_mm3_per_s_per_mm / particle_volume_mm3 is at most 1e8 particles a second",
         countable}},

@@ -125,6 +125,15 @@ ParamProblem scene_problem(const Scene& scene) {
     if (ParamProblem problem = check_params(trail_table(), *scene.trail, scene)) return problem;
   if (scene.optics)
     if (ParamProblem problem = check_params(optics_table(), *scene.optics, scene)) return problem;
+  if (scene.pulse)
+    if (ParamProblem problem = check_params(pulse_table(), *scene.pulse, scene)) return problem;
+  if (scene.vessels) {
+    if (ParamProblem problem = check_params(vessel_table(), *scene.vessels, scene)) return problem;
+    if (Count(scene.vessel_density.size()) != d.pixels())
+      return {"vessels", "its density map must hold width_px × height_px values"};
+    for (const float v : scene.vessel_density)
+      if (!(v >= 0.0f && v <= 1.0f)) return {"vessels", "its density map's values must lie between 0 and 1"};
+  }
   if (scene.haptics)
     if (ParamProblem problem = check_params(haptic_table(), *scene.haptics, scene)) return problem;
   if (scene.trace && (!scene.haptics || scene.trace->samples.empty()))

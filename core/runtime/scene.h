@@ -12,8 +12,10 @@
 #include "core/effects/blur_params.h"
 #include "core/effects/optics_params.h"
 #include "core/effects/particle_params.h"
+#include "core/effects/pulse_params.h"
 #include "core/effects/spread_params.h"
 #include "core/effects/trail_params.h"
+#include "core/effects/vessel_params.h"
 #include "core/haptics/haptic_params.h"
 #include "core/haptics/trace.h"
 #include "core/physics/pixel_grid.h"
@@ -58,6 +60,9 @@ struct Scene {
   std::optional<BlurParams> blur;
   std::optional<TrailParams> trail;
   std::optional<OpticsParams> optics;  // the endoscope's headlight; without it, flat light
+  std::optional<PulseParams> pulse;    // a heartbeat for arterial wounds
+  std::optional<VesselParams> vessels;  // bleeding by vessel density, with its map:
+  std::vector<float> vessel_density;   // width_px × height_px, row by row, each 0 … 1
   std::optional<HapticParams> haptics;
   std::optional<Trace> trace;          // replayed through the haptic loop, one sample per tick
   std::vector<Cut> cuts;               // cuts the scene makes, in the order written (the order

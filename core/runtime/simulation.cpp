@@ -6,6 +6,7 @@
 
 #include "core/runtime/memory.h"
 #include "core/haptics/trace_replay.h"
+#include "core/runtime/vessels.h"
 
 namespace bleedsim {
 namespace {
@@ -30,7 +31,7 @@ Simulation::Simulation(Scene scene, const BackendChoice& choice) : scene_(std::m
   backend_ = std::move(selected.backend);
   backend_reason_ = std::move(selected.why);
   check_fits(scene_, *backend_);
-  state_.cuts = scene_.cuts;
+  for (const Cut& cut : scene_.cuts) state_.cuts.push_back(with_vessels(scene_, cut));
   pipeline_ = std::make_unique<Pipeline>(scene_, state_, *backend_);
   if (scene_.trace) haptics_.emplace(scene_);
 }
@@ -40,7 +41,7 @@ Simulation::~Simulation() = default;
 void Simulation::add_cut(const Cut& cut) {
   if (const ParamProblem problem = check_params(cut_table(), cut, scene_))
     throw std::invalid_argument(problem.text());
-  state_.cuts.push_back(cut);
+  state_.cuts.push_back(with_vessels(scene_, cut));
 }
 
 void Simulation::replay_haptic_ticks() {
@@ -52,7 +53,7 @@ void Simulation::replay_haptic_ticks() {
   while (haptics_->ticks_done() < end) {
     const Clock::time_point start = Clock::now();
     HapticStep step = haptics_->tick(trace_sample_at_tick(*scene_.trace, haptics_->ticks_done()));
-    if (step.cut) state_.cuts.push_back(*step.cut);
+    if (step.cut) state_.cuts.push_back(with_vessels(scene_, *step.cut));
     tick_seconds_.push_back(std::chrono::duration<double>(Clock::now() - start).count());
     frame_ticks_.push_back(step.record);
   }

@@ -82,13 +82,23 @@ struct Rgb {
 
 constexpr Rgb kMucosa{0.80f, 0.45f, 0.45f};
 constexpr Rgb kVessel{0.56f, 0.14f, 0.19f};
+constexpr float kVesselStrength = 0.8f;  // a vessel's colour at its centre, mixed into the mucosa's
 
 struct NoiseKeys {
   std::uint64_t mottle_coarse, mottle_fine, warp_x, warp_y, vessel_coarse, vessel_fine;
 };
 
-// The colour of the pixel whose centre is (x, y), in units of the image's longer side, so a
-// texture looks the same at any resolution.
+// How much of a vessel lies at (x, y), 0 to 1: the lattice is warped by a slow noise so that the
+// vessels do not run along its axes, and a soft threshold keeps the ridges' faint flanks out.
+float vessel_presence(const NoiseKeys& k, float x, float y) {
+  const float wx = x * 2.1f + 0.6f * value_noise(k.warp_x, x * 2.0f, y * 2.0f);
+  const float wy = y * 2.1f + 0.6f * value_noise(k.warp_y, x * 2.0f, y * 2.0f);
+  const float n = 0.7f * value_noise(k.vessel_coarse, wx, wy) +
+                  0.3f * value_noise(k.vessel_fine, wx * 2.7f, wy * 2.7f);
+  return smoothstep01(clamp01((pow8(ridge(n)) - 0.35f) / 0.45f));
+}
+
+// The colour of the pixel whose centre is (x, y), in units of the image's longer side.
 Rgb mucosa_colour(const NoiseKeys& k, float x, float y) {
   // Mottling: two octaves of value noise shade the pink base lighter and darker.
   const float mottle = 0.6f * value_noise(k.mottle_coarse, x * 3.0f, y * 3.0f) +
@@ -96,21 +106,15 @@ Rgb mucosa_colour(const NoiseKeys& k, float x, float y) {
   const float shade = mottle - 0.5f;
   const Rgb base{kMucosa.r + 0.16f * shade, kMucosa.g + 0.14f * shade, kMucosa.b + 0.12f * shade};
 
-  // Vessels: the lattice is warped by a slow noise so that they do not run along its axes.
-  const float wx = x * 2.1f + 0.6f * value_noise(k.warp_x, x * 2.0f, y * 2.0f);
-  const float wy = y * 2.1f + 0.6f * value_noise(k.warp_y, x * 2.0f, y * 2.0f);
-  const float n = 0.7f * value_noise(k.vessel_coarse, wx, wy) +
-                  0.3f * value_noise(k.vessel_fine, wx * 2.7f, wy * 2.7f);
-  const float vessel = pow8(ridge(n));
-  // A soft threshold keeps the faint flanks of the ridges out of the mucosa.
-  const float strength = 0.8f * smoothstep01(clamp01((vessel - 0.35f) / 0.45f));
+  const float strength = kVesselStrength * vessel_presence(k, x, y);
   return Rgb{lerp(base.r, kVessel.r, strength), lerp(base.g, kVessel.g, strength),
              lerp(base.b, kVessel.b, strength)};
 }
 
-}  // namespace
-
-Image procedural_tissue(int width, int height, std::uint64_t seed) {
+// The pixels of a width × height panel, each given f(keys, x, y) at its centre (in units of the
+// longer side, so a texture looks the same at any resolution).
+template <class F>
+void for_each_pixel(int width, int height, std::uint64_t seed, F f) {
   if (width <= 0 || height <= 0) {
     throw std::invalid_argument("procedural_tissue: width and height must be positive (got " +
                                 std::to_string(width) + " x " + std::to_string(height) + ")");
@@ -119,20 +123,33 @@ Image procedural_tissue(int width, int height, std::uint64_t seed) {
                        layer_key(seed, Layer::warp_x),        layer_key(seed, Layer::warp_y),
                        layer_key(seed, Layer::vessel_coarse), layer_key(seed, Layer::vessel_fine)};
   const auto longer_side = static_cast<float>(std::max(width, height));
+  for (int j = 0; j < height; ++j)
+    for (int i = 0; i < width; ++i)
+      f(std::size_t(j) * std::size_t(width) + std::size_t(i), keys, (static_cast<float>(i) + 0.5f) / longer_side,
+        (static_cast<float>(j) + 0.5f) / longer_side);
+}
 
-  Image image{width, height, std::vector<std::uint8_t>(std::size_t(width) * std::size_t(height) * 4)};
-  for (int j = 0; j < height; ++j) {
-    for (int i = 0; i < width; ++i) {
-      const Rgb c = mucosa_colour(keys, (static_cast<float>(i) + 0.5f) / longer_side,
-                                  (static_cast<float>(j) + 0.5f) / longer_side);
-      std::uint8_t* pixel = &image.rgba[(std::size_t(j) * std::size_t(width) + std::size_t(i)) * 4];
-      pixel[0] = byte_from_unit(c.r);
-      pixel[1] = byte_from_unit(c.g);
-      pixel[2] = byte_from_unit(c.b);
-      pixel[3] = 255;
-    }
-  }
+}  // namespace
+
+Image procedural_tissue(int width, int height, std::uint64_t seed) {
+  Image image{std::max(width, 0), std::max(height, 0), {}};
+  image.rgba.resize(std::size_t(image.width) * std::size_t(image.height) * 4);
+  for_each_pixel(width, height, seed, [&](std::size_t p, const NoiseKeys& keys, float x, float y) {
+    const Rgb c = mucosa_colour(keys, x, y);
+    std::uint8_t* pixel = &image.rgba[p * 4];
+    pixel[0] = byte_from_unit(c.r);
+    pixel[1] = byte_from_unit(c.g);
+    pixel[2] = byte_from_unit(c.b);
+    pixel[3] = 255;
+  });
   return image;
+}
+
+std::vector<float> procedural_vessel_density(int width, int height, std::uint64_t seed) {
+  std::vector<float> density(std::size_t(std::max(width, 0)) * std::size_t(std::max(height, 0)));
+  for_each_pixel(width, height, seed,
+                 [&](std::size_t p, const NoiseKeys& keys, float x, float y) { density[p] = vessel_presence(keys, x, y); });
+  return density;
 }
 
 }  // namespace bleedsim

@@ -240,7 +240,7 @@ TEST(ScenarioBadInput, UnknownKeyFarFromAnyListsTheKnownOnes) {
 
 TEST(ScenarioBadInput, UnknownTopLevelTable) {
   EXPECT_TRUE(refused_at(kBase + "[lighting]\nlamps = 3\n", kEnd, "lighting",
-                         "unknown table (known here: scene tissue spread particles blur trail optics haptics cut output)"));
+                         "unknown table (known here: scene tissue spread particles blur trail optics pulse vessels haptics cut output)"));
   EXPECT_TRUE(refused_at(kBase + "[sprad]\n", kEnd, "sprad", "unknown table; did you mean 'spread'?"));
   EXPECT_TRUE(refused_at(kBase + "[particle]\n", kEnd, "particle", "unknown table; did you mean 'particles'?"));
   EXPECT_TRUE(refused_at(kBase + "[blurr]\n", kEnd, "blurr", "unknown table; did you mean 'blur'?"));
