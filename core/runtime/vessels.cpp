@@ -13,8 +13,7 @@ double density_at(const Scene& scene, double x_mm, double y_mm) {
   const Domain& d = scene.domain;
   const double u = std::clamp(x_mm * d.width_px / d.width_mm - 0.5, 0.0, double(d.width_px - 1));
   const double v = std::clamp(y_mm * d.height_px / d.height_mm - 0.5, 0.0, double(d.height_px - 1));
-  const int i = std::min(int(u), d.width_px - 2 < 0 ? 0 : d.width_px - 2);
-  const int j = std::min(int(v), d.height_px - 2 < 0 ? 0 : d.height_px - 2);
+  const int i = std::max(0, std::min(int(u), d.width_px - 2)), j = std::max(0, std::min(int(v), d.height_px - 2));
   const int i1 = std::min(i + 1, d.width_px - 1), j1 = std::min(j + 1, d.height_px - 1);
   const double fx = u - i, fy = v - j;
   const auto at = [&](int a, int b) { return double(scene.vessel_density[std::size_t(b) * d.width_px + a]); };

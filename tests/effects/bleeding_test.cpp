@@ -182,16 +182,21 @@ TEST(Pulse, AnArterialCutBeatsAtTheHeartRateAboutItsMeanFlow) {
     std::size_t peak = 1;
     for (std::size_t k = 2; k < power.size(); ++k)
       if (power[k] > power[peak]) peak = k;
+    // Whole particles: a frame emits ⌊C(t₁)/V⌋ − ⌊C(t₀)/V⌋ = ΔC/V + r₀ − r₁ (r the fractional
+    // parts), so the rounding's DFT is V Σ (r_t − r_{t+1}) e^{−iωt}, which summation by parts
+    // bounds by V (n · |1 − e^{iω}| + 2) = V (2n sin(πk/n) + 2) at bin k.
+    const double rounding = scene.particles->particle_volume_mm3 * (2.0 * n * std::sin(kPi * 24.0 / n) + 2.0);
     if (arterial) {
       EXPECT_EQ(peak, 24u);
-      // The fundamental's amplitude, a₁ Q̄ per frame's volume (2 mm³/s / 30), against its DFT:
-      // |X₂₄| = n · a₁ · Q̄/30 / 2 (a sine of amplitude A has |X| = nA/2), less the frame's
-      // averaging (sinc(1.2/30) ≈ 0.997) and the particles' rounding.
-      EXPECT_NEAR(std::sqrt(power[24]), n * 0.6 * (2.0 / 30.0) / 2.0, 0.05 * n * 0.6 * (2.0 / 30.0) / 2.0);
+      // A sine of amplitude A per frame has |X| = nA/2; the frame's volume averages a₁ Q̄ sin over
+      // 1/30 s, which scales it by sinc(1.2/30); then the rounding above.
+      const double frame_average = std::sin(kPi * 1.2 / 30.0) / (kPi * 1.2 / 30.0);
+      const double fundamental = n * 0.6 * (2.0 / 30.0) * frame_average / 2.0;
+      EXPECT_NEAR(std::sqrt(power[24]), fundamental, rounding);
     } else {
-      // A steady flow's frames differ only by the floor's one particle: nothing at the heart rate
-      // comes near the arterial cut's beat.
-      EXPECT_LT(std::sqrt(power[24]), 0.01 * n * 0.6 * (2.0 / 30.0) / 2.0);
+      // A steady flow's ΔC is the same every frame, whose DFT at bin 24 of whole samples is 0: all
+      // that is left is the rounding, a twentieth of the arterial cut's line.
+      EXPECT_LE(std::sqrt(power[24]), rounding);
     }
   }
 }

@@ -606,43 +606,5 @@ TEST(ScenarioBlur, OutputFieldsNameTheBlurredFilmOnlyWithBlur) {
                          kBlurEnd + 3, "output.fields[1]", "'blur/thickness' is listed twice"));
 }
 
-// [pulse] and [vessels] (docs/bleeding.md): each refusal names the file, the line and the key. A
-// rule's key that the file left out is placed at its table's header.
-TEST(ScenarioPulse, BadSettingsAreRefusedAtTheirKey) {
-  EXPECT_TRUE(refused_at(kBase + "[pulse]\n", kEnd, "pulse.heart_rate_per_min",
-                         "has no effect: this scene declares no [particles]"));
-  EXPECT_TRUE(refused_at(kBase + "[particles]\n[pulse]\nheart_rate_per_min = 0\n", kEnd + 2,
-                         "pulse.heart_rate_per_min", "greater than 0"));
-  EXPECT_TRUE(refused_at(kBase + "[particles]\n[pulse]\nsystolic = 0.8\n", kEnd + 1, "pulse.dicrotic",
-                         "systolic + dicrotic must be below 1"));
-  EXPECT_TRUE(refused_at(kBase + "[particles]\n[pulse]\nsystolic = 0.2\n", kEnd + 1, "pulse.dicrotic",
-                         "must be below systolic"));
-  EXPECT_TRUE(refused_at(kBase + "[particles]\nvelocity_mm_s = [0, 60]\n[pulse]\n", kEnd + 2, "pulse.systolic",
-                         "past particles.max_speed_mm_s"));
-  EXPECT_TRUE(refused_at(with_line(kBase, 16, "arterial = true") + "[particles]\n", 16, "cut[1].arterial",
-                         "has no effect: this scene declares no [pulse]"));
-}
-
-TEST(ScenarioVessels, BadSettingsAreRefusedAtTheirKey) {
-  EXPECT_TRUE(refused_at(kBase + "[vessels]\n", kEnd, "vessels.map", "has no effect: this scene declares no [particles]"));
-  EXPECT_TRUE(refused_at(kBase + "[particles]\n[vessels]\n[tissue]\ntexture = \"t.png\"\n", kEnd + 1, "vessels.map",
-                         "this scene's tissue is a texture"));
-  EXPECT_TRUE(refused_at(kBase + "[particles]\n[vessels]\nmap = \"no-such-map.png\"\n", kEnd + 2, "vessels.map",
-                         "no-such-map.png"));
-  EXPECT_TRUE(refused_at(with_line(kBase, 16, "wound_angle_deg = 30") + "[particles]\n", 16, "cut[1].wound_angle_deg",
-                         "has no effect: this scene declares no [vessels]"));
-}
-
-// A grey map PNG is read as its grey over 255, resampled to the panel: the example's gradient,
-// 48 rows rising by 255 · (j + ½)/48, on a 64 × 48 panel reads back row by row.
-TEST(ScenarioVessels, AMapPngIsReadAsItsRedChannel) {
-  const std::string text = kBase + "[particles]\n[vessels]\nmap = \"" + std::string(BLEEDSIM_SOURCE_DIR) +
-                           "/scenarios/textures/vessels-gradient-64x48.png\"\n";
-  const Scene scene = parse_scenario(text, kPath).scene;
-  ASSERT_EQ(scene.vessel_density.size(), std::size_t(64 * 48));
-  for (int j = 0; j < 48; ++j)
-    EXPECT_EQ(scene.vessel_density[std::size_t(j) * 64 + 17], float(std::round(255.0 * (j + 0.5) / 48)) / 255.0f) << j;
-}
-
 }  // namespace
 }  // namespace bleedsim
