@@ -140,8 +140,9 @@ int main(int argc, char** argv) {
       ->transform(CLI::Validator(decimal_seed, ""))
       ->capture_default_str();
   trace_synth_cmd->add_option("--stroke", synth.strokes,
-                              "a cut from (x0, y0) to (x1, y1), mm in the device frame (x right, y up), as "
-                              "x0,y0,x1,y1; repeat for more strokes (default: one, -10,0,10,0)")
+                              "a stroke from (x0, y0) to (x1, y1), mm in the device frame (x right, y up), as "
+                              "x0,y0,x1,y1[,buttons]: the grip buttons held along it, 1 (cut) unless given, 2 for the "
+                              "suction's; repeat for more strokes (default: one cut, -10,0,10,0)")
       ->allow_extra_args(false);
   struct SynthNumber {
     const char* option;

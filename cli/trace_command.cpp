@@ -47,7 +47,8 @@ double median_interval_s(const Trace& trace) {
 
 namespace fs = std::filesystem;
 
-// "x0,y0,x1,y1" in mm, as --stroke takes it.
+// "x0,y0,x1,y1" in mm, and optionally the buttons held (",2"), as --stroke takes it; the buttons'
+// range is synthesize_trace's to check.
 StrokeSpec parse_stroke(const std::string& text) {
   std::vector<double> values;
   for (std::size_t begin = 0;;) {
@@ -58,12 +59,15 @@ StrokeSpec parse_stroke(const std::string& text) {
     if (field.empty() || *end != '\0' || !std::isfinite(values.back())) break;
     if (comma == std::string::npos) {
       if (values.size() == 4) return {values[0], values[1], values[2], values[3]};
+      if (values.size() == 5 && values[4] == std::floor(values[4]) && std::abs(values[4]) < 1e6)
+        return {values[0], values[1], values[2], values[3], int(values[4])};
       break;
     }
     begin = comma + 1;
   }
-  throw InputError(SourcePlace{}, "--stroke", "expected x0,y0,x1,y1: four numbers of mm, comma-separated (got '" +
-                                                  text + "')");
+  throw InputError(SourcePlace{}, "--stroke",
+                   "expected x0,y0,x1,y1[,buttons]: four numbers of mm and optionally the buttons held (an integer), "
+                   "comma-separated (got '" + text + "')");
 }
 
 // The text as the loader reads it. What the loader refuses here is a fault of the generator, not

@@ -25,15 +25,19 @@ void for_live_slots_in_order(const ParticleArgs& a, const Fn& fn) {
 
 // Only the live slots are sorted: they come first in the GPU's sort of every slot too (empty
 // slots carry the largest key), so sorted positions [0, live_count) agree between the backends.
+// Aspirated particles in the live range carry that key too, and sort after the living.
 void bin(const ParticleArgs& a) {
   const ParticleArrays& p = a.arrays;
   const ParticleModel& m = a.model;
-  const std::uint32_t cells = cell_count(m);
+  const std::uint32_t cells = cell_count(m), none = sentinel_key(m);
   // Count per cell, then each cell's start; cell_end serves as the write cursor and ends as the end.
   std::fill(p.cell_end, p.cell_end + cells, 0u);
+  int living = 0;
   for_live_slots_in_order(a, [&](int slot) {
     p.cell_key[slot] = cell_key_of(p, m, slot);
+    if (p.cell_key[slot] == none) return;
     ++p.cell_end[p.cell_key[slot]];
+    ++living;
   });
   std::uint32_t at = 0;
   for (std::uint32_t c = 0; c < cells; ++c) {
@@ -42,11 +46,13 @@ void bin(const ParticleArgs& a) {
     p.cell_end[c] = p.cell_start[c];
   }
   for_live_slots_in_order(a, [&](int slot) {
+    if (p.cell_key[slot] == none) return;
     const std::uint32_t to = p.cell_end[p.cell_key[slot]]++;
     p.sorted_key[to] = p.cell_key[slot];
     p.sorted_slot[to] = std::uint32_t(slot);
   });
-  for (int i = 0; i < a.live_count; ++i) gather_sorted(p, i);
+  std::fill(p.sorted_key + living, p.sorted_key + a.live_count, none);
+  for (int i = 0; i < living; ++i) gather_sorted(p, i);
 }
 
 }  // namespace

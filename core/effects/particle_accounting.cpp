@@ -28,4 +28,12 @@ ParticleCounts ParticleAccounting::counts() const {
   return {emitted_, emitted_ - oldest_alive_, expired_, overwritten_};
 }
 
+ParticleCounts with_aspirated(ParticleCounts c, const AspiratedFates& f) {
+  c.alive -= f.aspirated - f.expired - f.overwritten;
+  c.expired -= f.expired;
+  c.overwritten -= f.overwritten;
+  c.aspirated = f.aspirated;
+  return c;
+}
+
 }  // namespace bleedsim

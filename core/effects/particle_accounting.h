@@ -1,9 +1,12 @@
 #pragma once
-// Where every emitted particle went: still alive, expired (lived its lifetime), or overwritten
-// (its ring-buffer slot was taken by a newer one while it lived). Kept on the host from the
-// emission counts alone, exactly: emitted = alive + expired + overwritten after every step.
+// Where every emitted particle went: still alive, expired (lived its lifetime), overwritten (its
+// ring-buffer slot was taken by a newer one while it lived), or aspirated (taken by the suction).
+// Kept on the host from the emission counts alone, exactly, and from what the suction took, which
+// the backend counts: emitted = alive + expired + overwritten + aspirated after every step.
 #include <cstdint>
 #include <deque>
+
+#include "core/physics/particles.h"
 
 namespace bleedsim {
 
@@ -12,7 +15,12 @@ struct ParticleCounts {
   std::uint64_t alive = 0;
   std::uint64_t expired = 0;
   std::uint64_t overwritten = 0;
+  std::uint64_t aspirated = 0;  // a field's fifth element only in a scene with [suction]
 };
+
+// The counts from the ids alone (`by_id`: an aspirated particle still counted as its id's range
+// has it, alive, then expired or overwritten) corrected by what became of the aspirated ones.
+ParticleCounts with_aspirated(ParticleCounts by_id, const AspiratedFates& fates);
 
 class ParticleAccounting {
  public:

@@ -10,7 +10,7 @@ namespace {
 // Offsets of the scratch arrays, one after another, each aligned for vector loads.
 struct ScratchLayout {
   std::size_t acceleration, shift, on_edge, cell_key, slot_index, sorted_key, sorted_slot, sorted_position,
-      sorted_velocity, sorted_age, cell_start, cell_end, sort_scratch, total;
+      sorted_velocity, sorted_age, cell_start, cell_end, fates, sort_scratch, total;
 
   ScratchLayout(std::size_t cells, int capacity, std::size_t sort_scratch_bytes) {
     const std::size_t n = std::size_t(capacity);
@@ -32,6 +32,7 @@ struct ScratchLayout {
     sorted_age = take(n * sizeof(std::uint32_t));
     cell_start = take(cells * sizeof(std::uint32_t));
     cell_end = take(cells * sizeof(std::uint32_t));
+    fates = take(sizeof(AspiratedFates));
     sort_scratch = take(sort_scratch_bytes);
     total = at;
   }
@@ -62,6 +63,7 @@ void point_particle_scratch(ParticleArrays& a, std::size_t cells, void* base, st
   a.sorted_age = at_offset<std::uint32_t>(base, layout.sorted_age);
   a.cell_start = at_offset<std::uint32_t>(base, layout.cell_start);
   a.cell_end = at_offset<std::uint32_t>(base, layout.cell_end);
+  a.fates = at_offset<AspiratedFates>(base, layout.fates);
   a.sort_scratch = sort_scratch_bytes ? at_offset<void>(base, layout.sort_scratch) : nullptr;
   a.sort_scratch_bytes = sort_scratch_bytes;
 }
@@ -79,6 +81,8 @@ void clear_particles(Backend& backend, const ParticleArrays& a) {
   backend.upload(a.age, words.data(), n * sizeof(std::uint32_t));
   std::iota(words.begin(), words.end(), 0u);
   backend.upload(a.slot_index, words.data(), n * sizeof(std::uint32_t));
+  const AspiratedFates none{};
+  backend.upload(a.fates, &none, sizeof none);
 }
 
 }  // namespace bleedsim

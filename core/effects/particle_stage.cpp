@@ -16,6 +16,9 @@ std::size_t sort_scratch_bound(std::size_t capacity) { return 2 * capacity * 2 *
 
 // Particles a cut has emitted by time t: the blood its wound has given over the part of
 // [start, start + bleed] before t, a whole particle at a time.
+// emitted, alive, expired, overwritten; and aspirated in a scene with suction.
+int accounting_elements(const Scene& scene) { return scene.suction ? 5 : 4; }
+
 std::uint64_t emitted_by(const Cut& cut, const Scene& scene, double t) {
   const double blood = cut_blood_mm3(cut, t, scene.pulse ? &*scene.pulse : nullptr);
   return std::uint64_t(std::floor(blood / scene.particles->particle_volume_mm3));
@@ -35,8 +38,7 @@ ParticleStage::ParticleStage(const StageKind& kind, const Scene& scene, State& s
   Field& position = add_field(scene, state, backend, "particles/position", capacity);
   Field& velocity = add_field(scene, state, backend, "particles/velocity", capacity);
   Field& age = add_field(scene, state, backend, "particles/age", capacity);
-  counts_ = &add_field(scene, state, backend, "particles/accounting",
-                       int(sizeof(ParticleCounts) / sizeof(std::uint64_t)));
+  counts_ = &add_field(scene, state, backend, "particles/accounting", accounting_elements(scene));
   a.position = position.data.as<float>();
   a.velocity = velocity.data.as<float>();
   a.age = age.data.as<std::uint32_t>();
@@ -47,8 +49,9 @@ ParticleStage::ParticleStage(const StageKind& kind, const Scene& scene, State& s
   emitters_ = allocate(backend, std::max(kInitialEmitters, scene.cuts.size()) * sizeof(Emitter));
 
   clear_particles(backend, a);
+  if (scene.suction || scene.contact) instrument_.emplace(scene, backend, capacity);
   const ParticleCounts none{};
-  backend.upload(counts_->data.data(), &none, sizeof none);
+  backend.upload(counts_->data.data(), &none, counts_->bytes());
 }
 
 MemoryParts ParticleStage::memory_for(const Scene& scene) {
@@ -61,10 +64,13 @@ MemoryParts ParticleStage::memory_for(const Scene& scene) {
   const std::size_t per_slot = particle_scratch_bytes(0, p.capacity, sort_scratch_bound(n));
   const std::size_t with_grid =
       particle_scratch_bytes(particle_cell_count(scene).to<std::size_t>(), p.capacity, sort_scratch_bound(n));
-  return {{"particles.capacity", std::to_string(p.capacity) + " particle slots", Count(fields) + per_slot},
-          {p.cell_mm > 0 ? "particles.cell_mm" : "particles.diameter_mm",
-           "a collision grid of " + std::to_string(particle_cell_count(scene).value()) + " cells", with_grid - per_slot},
-          {"cut", "the particles' emitters", Count(std::max(kInitialEmitters, scene.cuts.size())) * sizeof(Emitter)}};
+  MemoryParts parts{
+      {"particles.capacity", std::to_string(p.capacity) + " particle slots", Count(fields) + per_slot},
+      {p.cell_mm > 0 ? "particles.cell_mm" : "particles.diameter_mm",
+       "a collision grid of " + std::to_string(particle_cell_count(scene).value()) + " cells", with_grid - per_slot},
+      {"cut", "the particles' emitters", Count(std::max(kInitialEmitters, scene.cuts.size())) * sizeof(Emitter)}};
+  if (scene.suction || scene.contact) parts.push_back(Instrument::memory_for(scene));
+  return parts;
 }
 
 void ParticleStage::emit(const Scene& scene, const State& state, Backend& backend, std::uint64_t step) {
@@ -120,6 +126,7 @@ void ParticleStage::track_live_particles() {
 
 void ParticleStage::run(const Scene& scene, State& state, Backend& backend) {
   const std::uint64_t substeps = std::uint64_t(substeps_);
+  const double steps_per_s = particle_steps_per_s(scene);
   for (std::uint64_t s = 0; s < substeps; ++s) {
     const std::uint64_t step = std::uint64_t(state.frames_done) * substeps + s;
     emit(scene, state, backend, step);
@@ -127,10 +134,19 @@ void ParticleStage::run(const Scene& scene, State& state, Backend& backend) {
     launch(backend, ParticlePhase::bin, args_);
     launch(backend, ParticlePhase::collide, args_);
     launch(backend, ParticlePhase::integrate, args_);
+    if (instrument_) instrument_->act(scene, state, backend, args_, double(step) / steps_per_s,
+                                      double(step + 1) / steps_per_s);
     accounting_.end_step(step);
+    // The next step's emission sees the range as this step leaves it.
+    track_live_particles();
   }
-  const ParticleCounts counts = accounting_.counts();
-  backend.upload(counts_->data.data(), &counts, sizeof counts);
+  ParticleCounts counts = accounting_.counts();
+  if (scene.suction) {
+    AspiratedFates fates;
+    backend.download(&fates, args_.arrays.fates, sizeof fates);
+    counts = with_aspirated(counts, fates);
+  }
+  backend.upload(counts_->data.data(), &counts, counts_->bytes());
 }
 
 }  // namespace bleedsim

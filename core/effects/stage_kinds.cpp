@@ -57,9 +57,10 @@ const std::vector<StageKind>& stage_kinds() {
         elements("particles/velocity", ElementType::f32, 2, true, "mm/s", "velocity of each slot's particle"),
         elements("particles/age", ElementType::u32, 1, true, "steps",
                  "steps each slot's particle has lived; a slot holds a live particle while its age is below the "
-                 "lifetime"),
+                 "lifetime (an aspirated particle's age has its top bit, 2^31, set)"),
         elements("particles/accounting", ElementType::u64, 1, false, "particles",
-                 "emitted, alive, expired, overwritten: emitted = alive + expired + overwritten")},
+                 "emitted, alive, expired, overwritten, and with [suction] aspirated: emitted = alive + expired + "
+                 "overwritten (+ aspirated)")},
        no_fields, ParticleStage::memory_for, make<ParticleStage>},
       {"splat", "particles", [](const Scene& s) { return s.particles.has_value(); },
        {image("splat/thickness", ElementType::f32, 1, "mm",

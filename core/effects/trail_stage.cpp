@@ -3,6 +3,7 @@
 #include <cmath>
 #include <vector>
 
+#include "core/effects/instrument.h"
 #include "core/physics/pixel_kernels.h"
 
 namespace bleedsim {
@@ -22,6 +23,18 @@ TrailStage::TrailStage(const StageKind& kind, const Scene& scene, State& state, 
 
 MemoryParts TrailStage::memory_for(const Scene& scene) { return {scene.domain.memory(sizeof(float))}; }
 
-void TrailStage::run(const Scene&, State&, Backend& backend) { launch(backend, work_); }
+void TrailStage::run(const Scene& scene, State& state, Backend& backend) {
+  if (scene.suction) {
+    const std::vector<float> sweep =
+        suction_sweep(scene, state, double(state.frames_done) / scene.frame_rate_hz, scene.frame_time_s(state.frames_done));
+    const std::size_t bytes = sweep.size() * sizeof(float);
+    if (bytes > sweep_.bytes()) sweep_ = allocate(backend, 2 * bytes);
+    if (bytes > 0) backend.upload(sweep_.data(), sweep.data(), bytes);
+    work_.sweep = sweep_.as<const float>();
+    work_.sweep_segments = int(sweep.size() / 4);
+    work_.reach_sq = float(scene.suction->radius_mm * scene.suction->radius_mm);
+  }
+  launch(backend, work_);
+}
 
 }  // namespace bleedsim

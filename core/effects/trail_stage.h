@@ -6,8 +6,9 @@
 
 namespace bleedsim {
 
-// (splat/thickness) => trail/residue
-// Each frame, in scenes with [trail]: the residue of the blood that ran over each pixel, drying.
+// (splat/thickness, the suction's path) => trail/residue
+// Each frame, in scenes with [trail]: the residue of the blood that ran over each pixel, drying,
+// and none where the suction passed.
 class TrailStage final : public Stage {
  public:
   TrailStage(const StageKind& kind, const Scene& scene, State& state, Backend& backend);
@@ -16,6 +17,7 @@ class TrailStage final : public Stage {
 
  private:
   TrailPixel work_{};
+  Buffer sweep_;  // the suction's path this frame, uploaded; grows with it
 };
 
 // One frame's drying: exp(−1 / (frame rate · drying_s)), in double, rounded once.

@@ -266,21 +266,25 @@ void read_effect(Reader& r, const toml::table& root, const ParamTable<P>& table,
   effect = params;
 }
 
-void read_cuts(Reader& r, const toml::table& root, Scenario& s) {
-  const toml::node* node = root.get("cut");
+// The [[cut]] or [[tip]] tables, in the order written; each is named "cut[i]" in messages.
+template <class P>
+void read_each(Reader& r, const toml::table& root, const ParamTable<P>& table, std::vector<P>& into, Scenario& s) {
+  const std::string name = table.name;
+  const toml::node* node = root.get(name);
   if (!node) return;
-  // toml++ does not count an empty array as one of tables: "cut = []" is simply no cuts.
+  // toml++ does not count an empty array as one of tables: "cut = []" is simply none.
   if (node->is_array() && node->as_array()->empty()) return;
   if (!node->is_array_of_tables())
-    r.fail(node->source(), "cut", std::string("expected cuts as [[cut]] tables, got ") + kind_of(*node));
-  const toml::array& cuts = *node->as_array();
-  for (std::size_t i = 0; i < cuts.size(); ++i) {
-    const toml::table& t = *cuts[i].as_table();
-    const std::string key = "cut[" + std::to_string(i) + "]";
+    r.fail(node->source(), name, "expected [[" + name + "]] tables, got " + kind_of(*node));
+  s.places[name] = r.place(node->source());
+  const toml::array& array = *node->as_array();
+  for (std::size_t i = 0; i < array.size(); ++i) {
+    const toml::table& t = *array[i].as_table();
+    const std::string key = name + "[" + std::to_string(i) + "]";
     s.places[key] = r.place(t.source());
-    Cut cut;
-    r.read(&t, cut_table(), cut, s.scene, key);
-    s.scene.cuts.push_back(cut);
+    P point;
+    r.read(&t, table, point, s.scene, key);
+    into.push_back(point);
   }
 }
 
@@ -389,8 +393,8 @@ std::vector<TableView> scenario_tables() {
   return {describe(scene_table()),    describe(tissue_table()), describe(spread_table()),
           describe(particle_table()), describe(blur_table()),   describe(trail_table()),
           describe(optics_table()),   describe(pulse_table()),  describe(vessel_table()),
-          describe(haptic_table()),   describe(cut_table()),
-          describe(output_table())};
+          describe(haptic_table()),   describe(suction_table()), describe(contact_table()),
+          describe(cut_table()),      describe(tip_table()),     describe(output_table())};
 }
 
 const ParamView& scenario_param(const std::string& key) {
@@ -427,8 +431,14 @@ Scenario parse_scenario(const std::string& text, const std::string& path, ReadTi
   read_effect(r, root, optics_table(), s.scene.optics, s.scene);
   read_effect(r, root, pulse_table(), s.scene.pulse, s.scene);
   read_effect(r, root, vessel_table(), s.scene.vessels, s.scene);
-  read_cuts(r, root, s);
+  read_each(r, root, cut_table(), s.scene.cuts, s);
   read_haptics(r, root, s);
+  // The instrument: its path, then what acts through it, then the path as a whole.
+  read_each(r, root, tip_table(), s.scene.tips, s);
+  read_effect(r, root, contact_table(), s.scene.contact, s.scene);
+  read_effect(r, root, suction_table(), s.scene.suction, s.scene);
+  if (const ParamProblem problem = tip_path_problem(s.scene))
+    throw InputError(s.place_of(problem.key), problem.key, problem.message);
   r.read(r.table(root, "output"), output_table(), s.output, s.scene, "output");
   read_tissue(r, root, s, tissue);
   return s;

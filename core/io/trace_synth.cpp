@@ -27,12 +27,12 @@ enum class Pace {
   steady,  // the cut itself, at the speed asked for, so the tissue sees that speed throughout
 };
 
-// The tool going from `from` to `to` over samples [begin, end), the cutting button held or not.
+// The tool going from `from` to `to` over samples [begin, end), with these grip buttons held (0: none).
 struct Move {
   long begin, end;
   Point from, to;
   Pace pace;
-  bool cutting;
+  int buttons;
 };
 
 // Moves end on the sample nearest their end time, summed from the start, so rounding never
@@ -41,10 +41,10 @@ class Plan {
  public:
   Plan(Point start, double rate_hz) : at_(start), rate_hz_(rate_hz) {}
 
-  void go(Point to, double duration_s, Pace pace, bool cutting) {
+  void go(Point to, double duration_s, Pace pace, int buttons) {
     elapsed_s_ += duration_s;
     const long end = std::lround(elapsed_s_ * rate_hz_);
-    moves_.push_back({moves_.empty() ? 0 : moves_.back().end, end, at_, to, pace, cutting});
+    moves_.push_back({moves_.empty() ? 0 : moves_.back().end, end, at_, to, pace, buttons});
     at_ = to;
   }
   void stay(double duration_s) { go(at_, duration_s, Pace::eased, false); }
@@ -60,7 +60,7 @@ class Plan {
 
 double stroke_length_mm(const StrokeSpec& s) { return std::hypot(s.to_x_mm - s.from_x_mm, s.to_y_mm - s.from_y_mm); }
 
-// Rest above the first stroke; then, for each stroke, down onto the tissue, into it with the button
+// Rest above the first stroke; then, for each stroke, down onto the tissue, into it with its buttons
 // pressed, along the cut, back up with the button released, and over to the next stroke's start
 // while pausing above the tissue.
 std::vector<Move> motion(const SynthSpec& spec) {
@@ -70,13 +70,13 @@ std::vector<Move> motion(const SynthSpec& spec) {
   p.stay(spec.pause_s);
   for (std::size_t k = 0; k < spec.strokes.size(); ++k) {
     const StrokeSpec& s = spec.strokes[k];
-    p.go({s.from_x_mm, s.from_y_mm, surface}, spec.approach_s, Pace::eased, false);
-    p.go({s.from_x_mm, s.from_y_mm, cut}, spec.press_s, Pace::eased, true);
-    p.go({s.to_x_mm, s.to_y_mm, cut}, stroke_length_mm(s) / spec.speed_mm_s, Pace::steady, true);
-    p.go({s.to_x_mm, s.to_y_mm, hover}, spec.lift_s, Pace::eased, false);
+    p.go({s.from_x_mm, s.from_y_mm, surface}, spec.approach_s, Pace::eased, 0);
+    p.go({s.from_x_mm, s.from_y_mm, cut}, spec.press_s, Pace::eased, s.buttons);
+    p.go({s.to_x_mm, s.to_y_mm, cut}, stroke_length_mm(s) / spec.speed_mm_s, Pace::steady, s.buttons);
+    p.go({s.to_x_mm, s.to_y_mm, hover}, spec.lift_s, Pace::eased, 0);
     if (k + 1 < spec.strokes.size()) {
       const StrokeSpec& next = spec.strokes[k + 1];
-      p.go({next.from_x_mm, next.from_y_mm, hover}, spec.pause_s, Pace::eased, false);
+      p.go({next.from_x_mm, next.from_y_mm, hover}, spec.pause_s, Pace::eased, 0);
     } else {
       p.stay(spec.pause_s);
     }
@@ -190,6 +190,9 @@ void check_strokes(const SynthSpec& spec) {
                                format_number(kFalconMinXY_m * 1000) + " to " + format_number(kFalconMaxXY_m * 1000) +
                                " mm)");
     }
+    if (s.buttons < 1 || s.buttons > 15)
+      refuse("--stroke", which + " holds buttons " + std::to_string(s.buttons) +
+                             ": the grip buttons are a bitmask from 1 to 15");
     if (stroke_length_mm(s) == 0)
       refuse("--stroke", which + " starts and ends at (" + format_number(s.from_x_mm) + ", " +
                              format_number(s.from_y_mm) + ") mm: a stroke must go somewhere");
@@ -211,7 +214,8 @@ std::string generator(const SynthSpec& spec) {
   std::string line = "bleedsim trace synth --seed " + std::to_string(spec.seed);
   for (const StrokeSpec& s : spec.strokes)
     line += " --stroke " + format_number(s.from_x_mm) + "," + format_number(s.from_y_mm) + "," +
-            format_number(s.to_x_mm) + "," + format_number(s.to_y_mm);
+            format_number(s.to_x_mm) + "," + format_number(s.to_y_mm) +
+            (s.buttons == 1 ? "" : "," + std::to_string(s.buttons));
   const std::pair<const char*, double> options[] = {
       {"--surface-z-mm", spec.surface_z_mm}, {"--depth-mm", spec.depth_mm},   {"--hover-mm", spec.hover_mm},
       {"--speed-mm-s", spec.speed_mm_s},     {"--approach-s", spec.approach_s}, {"--press-s", spec.press_s},
@@ -250,12 +254,12 @@ std::string synthesize_trace(const SynthSpec& spec) {
     const Move& move = moves[m];
     // The last sample is where the last move ends.
     const Point planned = i < move.end ? along(move, i) : move.to;
-    const bool cutting = i < move.end && move.cutting;
+    const int buttons = i < move.end ? move.buttons : 0;
     const double t_s = double(i) / spec.rate_hz;
     const Point shake = tremor.at(t_s);
     char line[96];
     std::snprintf(line, sizeof line, "%.4f,%.6f,%.6f,%.6f,%d\n", t_s, (planned.x + shake.x) / 1000,
-                  (planned.y + shake.y) / 1000, (planned.z + shake.z) / 1000, cutting ? 1 : 0);
+                  (planned.y + shake.y) / 1000, (planned.z + shake.z) / 1000, buttons);
     text += line;
   }
   return text;

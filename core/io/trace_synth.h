@@ -8,15 +8,17 @@
 
 namespace bleedsim {
 
-// One cut, in libnifalcon's device frame (x right, y up), millimetres.
+// One stroke, in libnifalcon's device frame (x right, y up), millimetres, with the grip buttons held
+// along it: 1 (the first) cuts; 2 (the second) is the suction's default.
 struct StrokeSpec {
   double from_x_mm = 0, from_y_mm = 0, to_x_mm = 0, to_y_mm = 0;
+  int buttons = 1;
 };
 
 // Every field is named in messages by its `bleedsim trace synth` option (in brackets).
 struct SynthSpec {
   std::uint64_t seed = 1;                          // [--seed] draws the tremor
-  std::vector<StrokeSpec> strokes{{-10, 0, 10, 0}};  // [--stroke] the cuts, in order
+  std::vector<StrokeSpec> strokes{{-10, 0, 10, 0}};  // [--stroke] the strokes, in order
   double surface_z_mm = 120.0;  // [--surface-z-mm] device z of the tissue surface; the tool is in it below this
   double depth_mm = 2.0;        // [--depth-mm] how far below the surface a stroke cuts
   double hover_mm = 15.0;       // [--hover-mm] how far above the surface the tool waits between strokes

@@ -73,6 +73,19 @@ struct ParticleModel {
 
 // A slot whose age is at least the lifetime holds no particle; a slot never written holds this.
 constexpr std::uint32_t kNeverUsed = 0xffffffffu;
+// A particle the suction took (core/physics/instrument.h) keeps its slot, its age marked with this
+// bit: it no longer lives, but it still ages in its slot, so that the accounting can tell when its
+// id would have expired or been overwritten (lifetimes are below 2³¹ steps).
+constexpr std::uint32_t kAspirated = 0x80000000u;
+
+// What became of aspirated particles, counted where it happens (integer atomics, in any order):
+// taken by the suction; and of those, the ones whose lifetime has since run out, and the ones
+// whose slot a new particle has since taken while their lifetime ran.
+struct AspiratedFates {
+  std::uint64_t aspirated;
+  std::uint64_t expired;
+  std::uint64_t overwritten;
+};
 
 // The ring buffer (capacity slots; a particle with id n lives in slot n mod capacity) and the
 // scratch a step needs. Positions and velocities are (x, y) pairs.
@@ -93,6 +106,7 @@ struct ParticleArrays {
   std::uint32_t* sorted_age;
   std::uint32_t* cell_start;  // per cell: [start, end) in sorted order; empty cells start = end
   std::uint32_t* cell_end;
+  AspiratedFates* fates;      // one, for the whole ring
   void* sort_scratch;         // the CUDA sort's temporary storage (none on the CPU)
   std::size_t sort_scratch_bytes;
 };
@@ -118,13 +132,30 @@ struct ParticleArgs {
   int new_count;            // emit: at most capacity
   std::uint64_t step;       // emit: the step number, for the jitter
   // The live particles, ids [oldest alive, emitted), fill live_count slots from first_live_slot
-  // on, wrapping: every other slot is empty. Loops over particles need visit only these.
+  // on, wrapping: every other slot is empty (aspirated particles are among them, no longer alive).
+  // Loops over particles need visit only these. At emit, the range is the one before it.
   std::uint32_t first_live_slot;
   int live_count;
 };
 
 BLEEDSIM_HD inline bool is_alive(const ParticleLifetime& l, std::uint32_t age) { return age < l.steps; }
 BLEEDSIM_HD inline bool is_alive(const ParticleModel& m, std::uint32_t age) { return is_alive(m.lifetime, age); }
+BLEEDSIM_HD inline bool is_aspirated(std::uint32_t age) { return (age & kAspirated) != 0 && age != kNeverUsed; }
+
+// Adds one to a counter that many threads may add to: an integer, so the sum is the same in any order.
+BLEEDSIM_HD inline void count_one(std::uint64_t* counter) {
+#if defined(__CUDA_ARCH__)
+  atomicAdd(reinterpret_cast<unsigned long long*>(counter), 1ull);
+#else
+  __atomic_fetch_add(counter, std::uint64_t(1), __ATOMIC_RELAXED);
+#endif
+}
+
+// Whether slot lies in the live range [first_live_slot, + live_count), wrapping.
+BLEEDSIM_HD inline bool in_live_range(std::uint32_t first_live_slot, int live_count, int capacity, std::size_t slot) {
+  const std::uint64_t c = std::uint64_t(capacity);
+  return (std::uint64_t(slot) + c - std::uint64_t(first_live_slot)) % c < std::uint64_t(live_count);
+}
 
 // The t-th live slot, t < live_count.
 BLEEDSIM_HD inline int live_slot(const ParticleArgs& a, int t) {
@@ -154,6 +185,11 @@ BLEEDSIM_HD inline void emit_particle(const ParticleArgs& a, int t) {
   const Emitter& from = a.emitters[e];
   const std::uint64_t id = from.first_id + (std::uint32_t(t) - from.first_new);
   const std::size_t slot = std::size_t(id % std::uint64_t(a.arrays.capacity));
+  // A new particle takes the slot of the live one before it, overwriting it: counted here when that
+  // one was aspirated, as the accounting has counted it overwritten (the live range is this step's,
+  // before emission).
+  if (in_live_range(a.first_live_slot, a.live_count, a.arrays.capacity, slot) && is_aspirated(a.arrays.age[slot]))
+    count_one(&a.arrays.fates->overwritten);
   const auto jitter = [&](std::uint32_t stream) {
     return signed_unit(counter_hash(m.seed, id, a.step, stream));
   };
@@ -380,7 +416,15 @@ BLEEDSIM_HD inline float grip(const ParticleModel& m, std::uint32_t on_edge) {
 // panel's edges stop a particle and take the speed it had into them (blood does not bounce).
 BLEEDSIM_HD inline void integrate_particle(const ParticleArrays& p, const ParticleModel& m, int slot) {
   const std::uint32_t age = p.age[slot];
-  if (!is_alive(m, age)) return;
+  if (!is_alive(m, age)) {
+    // An aspirated particle ages in its slot, and is counted when its lifetime runs out, as the
+    // accounting counts its id expired then.
+    if (is_aspirated(age)) {
+      p.age[slot] = age + 1;
+      if (((age + 1) & ~kAspirated) == m.lifetime.steps) count_one(&p.fates->expired);
+    }
+    return;
+  }
   float vx = (p.velocity[2 * slot] + m.dt_s * (m.gravity_x + p.acceleration[2 * slot])) / m.drag_divisor;
   float vy = (p.velocity[2 * slot + 1] + m.dt_s * (m.gravity_y + p.acceleration[2 * slot + 1])) / m.drag_divisor;
   const float speed_sq = vx * vx + vy * vy;

@@ -134,6 +134,14 @@ ParamProblem scene_problem(const Scene& scene) {
     for (const float v : scene.vessel_density)
       if (!(v >= 0.0f && v <= 1.0f)) return {"vessels", "its density map's values must lie between 0 and 1"};
   }
+  for (std::size_t i = 0; i < scene.tips.size(); ++i)
+    if (ParamProblem problem = check_params(tip_table(), scene.tips[i], scene, "tip[" + std::to_string(i) + "]"))
+      return problem;
+  if (ParamProblem problem = tip_path_problem(scene)) return problem;
+  if (scene.contact)
+    if (ParamProblem problem = check_params(contact_table(), *scene.contact, scene)) return problem;
+  if (scene.suction)
+    if (ParamProblem problem = check_params(suction_table(), *scene.suction, scene)) return problem;
   if (scene.haptics)
     if (ParamProblem problem = check_params(haptic_table(), *scene.haptics, scene)) return problem;
   if (scene.trace && (!scene.haptics || scene.trace->samples.empty()))

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "core/effects/blur_params.h"
+#include "core/effects/instrument_params.h"
 #include "core/effects/optics_params.h"
 #include "core/effects/particle_params.h"
 #include "core/effects/pulse_params.h"
@@ -63,6 +64,9 @@ struct Scene {
   std::optional<PulseParams> pulse;    // a heartbeat for arterial wounds
   std::optional<VesselParams> vessels;  // bleeding by vessel density, with its map:
   std::vector<float> vessel_density;   // width_px × height_px, row by row, each 0 … 1
+  std::optional<SuctionParams> suction;  // the instrument's suction ...
+  std::optional<ContactParams> contact;  // ... and its tip's body in the blood
+  std::vector<TipPoint> tips;          // a scripted instrument's path, in a scene without [haptics]
   std::optional<HapticParams> haptics;
   std::optional<Trace> trace;          // replayed through the haptic loop, one sample per tick
   std::vector<Cut> cuts;               // cuts the scene makes, in the order written (the order

@@ -1,5 +1,6 @@
 #include "core/runtime/simulation.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
@@ -23,6 +24,13 @@ void check_fits(const Scene& scene, const Backend& backend) {
   }
 }
 
+// The stylus as the instrument: its tip where the tick found it over the panel, in contact when it
+// touches the tissue, its suction on while it does with a suction button held.
+ToolSample stylus_sample(const Scene& scene, const HapticTick& tick) {
+  const bool suction = scene.suction && tick.contact && (tick.buttons & scene.suction->buttons) != 0;
+  return {tick.t_s, tick.panel_mm.x(), tick.panel_mm.y(), tick.contact, suction};
+}
+
 }  // namespace
 
 Simulation::Simulation(Scene scene, const BackendChoice& choice) : scene_(std::move(scene)) {
@@ -44,6 +52,17 @@ void Simulation::add_cut(const Cut& cut) {
   state_.cuts.push_back(with_vessels(scene_, cut));
 }
 
+void Simulation::add_stylus_sample(const ToolSample& sample) {
+  if (!scene_.haptics || scene_.trace)
+    throw std::invalid_argument("stylus samples: this scene's stylus is " +
+                                std::string(scene_.trace ? "its trace's" : "absent (it declares no [haptics])"));
+  if (!std::isfinite(sample.t_s) || !std::isfinite(sample.x_mm) || !std::isfinite(sample.y_mm))
+    throw std::invalid_argument("stylus samples: t_s, x_mm and y_mm must be finite");
+  if (!state_.stylus.empty() && !(sample.t_s > state_.stylus.back().t_s))
+    throw std::invalid_argument("stylus samples: each must be later than the one before");
+  state_.stylus.push_back(sample);
+}
+
 void Simulation::replay_haptic_ticks() {
   using Clock = std::chrono::steady_clock;
   frame_ticks_.clear();
@@ -54,6 +73,7 @@ void Simulation::replay_haptic_ticks() {
     const Clock::time_point start = Clock::now();
     HapticStep step = haptics_->tick(trace_sample_at_tick(*scene_.trace, haptics_->ticks_done()));
     if (step.cut) state_.cuts.push_back(with_vessels(scene_, *step.cut));
+    if (scene_.suction || scene_.contact) state_.stylus.push_back(stylus_sample(scene_, step.record));
     tick_seconds_.push_back(std::chrono::duration<double>(Clock::now() - start).count());
     frame_ticks_.push_back(step.record);
   }
@@ -62,6 +82,12 @@ void Simulation::replay_haptic_ticks() {
 void Simulation::step() {
   replay_haptic_ticks();
   pipeline_->run_frame(scene_, state_, *backend_);
+  // The stylus's samples up to this frame's end are done with but the last, where it stays.
+  const double end_s = scene_.frame_time_s(state_.frames_done);
+  std::vector<ToolSample>& stylus = state_.stylus;
+  const auto after = std::upper_bound(stylus.begin(), stylus.end(), end_s,
+                                      [](double t, const ToolSample& s) { return t < s.t_s; });
+  if (after - stylus.begin() > 1) stylus.erase(stylus.begin(), after - 1);
   ++state_.frames_done;
 }
 

@@ -44,6 +44,14 @@ class Simulation {
   void add_cut(const Cut& cut);
   const std::vector<Cut>& cuts() const { return state_.cuts; }
 
+  // A sample of the host's stylus, for a scene with [haptics] and no trace: where its tip is on the
+  // panel, whether it touches the tissue and whether its suction is on. The instrument ([suction],
+  // [contact]) follows the samples (in straight lines between them, staying at the last); give
+  // them up to the end of each frame before stepping it. Throws std::invalid_argument for a scene
+  // whose stylus is not the host's, a sample not later than the one before, or a value that is not
+  // finite.
+  void add_stylus_sample(const ToolSample& sample);
+
   // Computes the next frame. A scene with a trace first replays the haptic ticks up to the
   // frame's end (Scene::haptic_ticks_through_frame), whose cuts the frame then shows.
   void step();

@@ -9,6 +9,7 @@
 
 #include "core/runtime/buffer.h"
 #include "core/runtime/scene.h"
+#include "core/runtime/tool.h"
 
 namespace bleedsim {
 
@@ -42,6 +43,9 @@ struct Field : FieldLayout {
 struct State {
   std::int64_t frames_done = 0;  // frames computed so far; the next is frame number frames_done
   std::vector<Cut> cuts;         // the scene's cuts, then those fed at run time, in that order
+  // The stylus's samples for the frame being computed (the haptic loop's, or the host's), after
+  // the last one of the frames before it: its tip between them is the instrument's.
+  std::vector<ToolSample> stylus;
   std::deque<Field> fields;      // deque: a Field's address never moves once added
 
   Field* find(const std::string& name);

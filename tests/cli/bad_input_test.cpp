@@ -116,6 +116,17 @@ TEST_F(BadInput, CutParticleRateInASceneWithoutParticles) {
                  {"bad.toml:11:25: cut[0].flow_mm3_per_s_per_mm: has no effect: this scene declares no [particles]"});
 }
 
+TEST_F(BadInput, SuctionWithoutAnInstrument) {
+  expect_refused(scenario_with("", "[particles]\n[suction]\nradius_mm = 1.0\n"),
+                 {"bad.toml:13:13: suction.radius_mm: has no instrument to act through"});
+}
+
+TEST_F(BadInput, SuctionThatCannotReachPastTheTip) {
+  expect_refused(scenario_with("", "[particles]\n[[tip]]\nt_s = 0\nx_mm = 1\ny_mm = 1\n[[tip]]\nt_s = 1\nx_mm = 2\n"
+                                   "y_mm = 1\n[contact]\ntip_radius_mm = 2.0\n[suction]\nradius_mm = 1.5\n"),
+                 {"bad.toml:23:13: suction.radius_mm: must be larger than contact.tip_radius_mm"});
+}
+
 TEST_F(BadInput, UnwritableOutputPathFromTheCommandLine) {
   write_text(dir_ / "a-file", "");
   out_ = dir_ / "a-file" / "out";

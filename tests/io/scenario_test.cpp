@@ -240,7 +240,7 @@ TEST(ScenarioBadInput, UnknownKeyFarFromAnyListsTheKnownOnes) {
 
 TEST(ScenarioBadInput, UnknownTopLevelTable) {
   EXPECT_TRUE(refused_at(kBase + "[lighting]\nlamps = 3\n", kEnd, "lighting",
-                         "unknown table (known here: scene tissue spread particles blur trail optics pulse vessels haptics cut output)"));
+                         "unknown table (known here: scene tissue spread particles blur trail optics pulse vessels haptics suction contact cut tip output)"));
   EXPECT_TRUE(refused_at(kBase + "[sprad]\n", kEnd, "sprad", "unknown table; did you mean 'spread'?"));
   EXPECT_TRUE(refused_at(kBase + "[particle]\n", kEnd, "particle", "unknown table; did you mean 'particles'?"));
   EXPECT_TRUE(refused_at(kBase + "[blurr]\n", kEnd, "blurr", "unknown table; did you mean 'blur'?"));
@@ -369,7 +369,7 @@ TEST(ScenarioBadInput, DurationThatGivesTooManyFrames) {
 
 TEST(ScenarioBadInput, CutWrittenAsASingleTable) {
   EXPECT_TRUE(refused_at(with_line(without_lines(kBase, 13, 16), 10, "[cut]"), 10, "cut",
-                         "expected cuts as [[cut]] tables, got a table"));
+                         "expected [[cut]] tables, got a table"));
 }
 
 TEST(ScenarioBadInput, OutputFieldWithAnUnknownName) {

@@ -183,6 +183,22 @@ TEST(TraceSynth, SeveralStrokesAreSeveralCutsWithTheToolLiftedBetween) {
   }
 }
 
+// A stroke may hold other buttons than the cutting one (a suction pass holds the second): each
+// stroke's press and stroke hold exactly its own buttons, and nothing is held between strokes; the
+// generator line names the buttons, so the file makes itself again.
+TEST(TraceSynth, EachStrokeHoldsItsOwnButtons) {
+  SynthSpec spec = three_strokes();
+  spec.strokes[1].buttons = 2;
+  spec.strokes[2].buttons = 3;
+  const Trace t = synth(spec);
+  std::vector<int> held_in_order;
+  for (const TraceSample& s : t.samples)
+    if (s.buttons != 0 && (held_in_order.empty() || held_in_order.back() != s.buttons)) held_in_order.push_back(s.buttons);
+  EXPECT_EQ(held_in_order, (std::vector<int>{1, 2, 3}));
+  EXPECT_NE(t.metadata.at("generator").find("--stroke 0,0,15,-5,2 --stroke -15,-15,5,-20,3 --surface"),
+            std::string::npos);
+}
+
 TEST(TraceSynth, AStrokeAtTheWorkspaceEdgeLessTheTremorIsAccepted) {
   SynthSpec spec;  // values exact in binary, so that the edge is the edge
   spec.tremor_um = 125;
@@ -232,6 +248,8 @@ TEST(TraceSynth, RefusesABadSpecNamingTheOption) {
   EXPECT_TRUE(refused([](SynthSpec& s) { s.strokes[0].from_y_mm = -65; }, "--stroke", "stroke 1 reaches -65 mm"));
   EXPECT_TRUE(refused([](SynthSpec& s) { s.strokes.push_back({1, 2, 1, 2}); }, "--stroke",
                       "stroke 2 starts and ends at (1, 2) mm"));
+  EXPECT_TRUE(refused([](SynthSpec& s) { s.strokes.push_back({1, 2, 3, 4, 16}); }, "--stroke",
+                      "stroke 2 holds buttons 16: the grip buttons are a bitmask from 1 to 15"));
   EXPECT_TRUE(refused([](SynthSpec& s) { s.speed_mm_s = 0.01; }, "", "the trace would last 2002 s, over the 600 s"));
 }
 

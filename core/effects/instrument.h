@@ -1,0 +1,39 @@
+#pragma once
+// The instrument's part of each particle sub-step (core/physics/instrument.h): where its tip is,
+// how many particles its suction may take, and the launches, counted under "suction" and
+// "contact". The particle stage makes one only for a scene with [suction] or [contact].
+#include <cstdint>
+#include <optional>
+#include <vector>
+
+#include "core/physics/instrument.h"
+#include "core/runtime/backend.h"
+#include "core/runtime/memory.h"
+#include "core/runtime/state.h"
+
+namespace bleedsim {
+
+class Instrument {
+ public:
+  Instrument(const Scene& scene, Backend& backend, int capacity);
+  // The candidates' keys: a slot's worth each.
+  static MemoryPart memory_for(const Scene& scene);
+
+  // After the sub-step over [t0, t1] has moved the particles: suction, then contact, at the tip's
+  // place at t1. Particles it aspirates are counted in the arrays' fates.
+  void act(const Scene& scene, const State& state, Backend& backend, const ParticleArgs& particles, double t0,
+           double t1);
+
+ private:
+  std::vector<ToolSample> path_;      // a scripted path; empty: the stylus (State::stylus)
+  double particles_per_step_ = 0.0;   // max_flow × dt / particle volume: the suction's quota a step
+  std::uint64_t suction_steps_ = 0;   // sub-steps with the suction on so far
+  Buffer scratch_;                    // the candidates' keys, then their count
+  InstrumentArgs args_{};
+};
+
+// Where the suction's tip swept over the panel between t0 and t1, as segments (x0, y0, x1, y1)
+// in mm: what the trail stage dries under it. None when the scene has no suction.
+std::vector<float> suction_sweep(const Scene& scene, const State& state, double t0_s, double t1_s);
+
+}  // namespace bleedsim
