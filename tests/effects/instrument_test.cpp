@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/effects/particle_model.h"
+#include "core/io/scenario.h"
 #include "core/physics/instrument.h"
 #include "core/runtime/simulation.h"
 #include "core/runtime/tissue.h"
@@ -288,6 +289,67 @@ TEST(Contact, ItsWakeThroughAPoolClosesAgain) {
     EXPECT_LT(least_while_over, 0.5) << "seed " << seed << ": the tip parts the pool where it is";
     EXPECT_EQ(counts(sim).alive, alive_before) << "seed " << seed;
   }
+}
+
+// The stylus as the instrument (scenarios/falcon-suction.toml: a cut stroke with the first button,
+// then a pass along the bottom with the second). The suction takes nothing until a tick has found
+// the tip in contact with a suction button held, takes nothing in a frame unless such a tick is
+// in it or the tip stays so from the frame before, and has taken blood by the end.
+TEST(Suction, TheStylusSucksOnlyInContactWithItsButtonHeld) {
+  const Scenario scenario = load_scenario(std::string(BLEEDSIM_SOURCE_DIR) + "/scenarios/falcon-suction.toml");
+  Simulation sim(scenario.scene, kCpu);
+  bool on = false;  // the last tick's suction: it holds until the next
+  std::uint64_t before = 0;
+  while (sim.frames_done() < scenario.scene.frame_count()) {
+    bool on_in_frame = on;
+    sim.step();
+    for (const HapticTick& tick : sim.haptic_ticks()) {
+      on = tick.contact && (tick.buttons & 0x2) != 0;
+      on_in_frame = on_in_frame || on;
+    }
+    const std::uint64_t taken = counts(sim).aspirated;
+    if (!on_in_frame) {
+      EXPECT_EQ(taken, before) << "t = " << sim.time_s() << ": no tick sucked";
+    }
+    before = taken;
+  }
+  EXPECT_GT(before, 100u);
+}
+
+// A host drives its stylus itself: its samples move the instrument as a trace's ticks do, and a
+// scene whose stylus is its trace's, or that has none, refuses them.
+TEST(Contact, AHostsStylusSamplesMoveTheInstrument) {
+  Scene scene = pool_scene(4.0, 5.0, 2.0, 1.5);
+  scene.haptics = HapticParams{};
+  scene.contact = ContactParams{0.5};
+  Simulation sim(scene, kCpu);
+  const float body = float(0.5 + scene.particles->diameter_mm / 2.0);
+  const ParticleLifetime lifetime = particle_lifetime(scene);
+  // The tip sweeps the pool from left to right at 8 mm/s from 0.6 s, a sample each millisecond.
+  std::vector<ToolSample> samples;
+  for (int n = 0; n <= 1500; ++n) {
+    const double t = n / 1000.0;
+    samples.push_back({t, 0.5 + 8.0 * std::max(0.0, t - 0.6), 5.5, t >= 0.6, false});
+  }
+  std::size_t given = 0;
+  for (int k = 0; k < scene.frame_count(); ++k) {
+    const double end = scene.frame_time_s(k);
+    for (; given < samples.size() && samples[given].t_s <= end; ++given) sim.add_stylus_sample(samples[given]);
+    sim.step();
+    if (sim.time_s() < 0.7) continue;
+    // Where the instrument is: on what the host has given, which ends before the frame's end.
+    const ToolSample tip = *tool_at({samples.begin(), samples.begin() + std::ptrdiff_t(given)}, end, true);
+    const std::vector<float> position = test::field_values<float>(sim, "particles/position");
+    const std::vector<std::uint32_t> age = test::field_values<std::uint32_t>(sim, "particles/age");
+    for (std::size_t s = 0; s < age.size(); ++s) {
+      if (!is_alive(lifetime, age[s])) continue;
+      ASSERT_TRUE(outside_disc(position[2 * s], position[2 * s + 1], float(tip.x_mm), float(tip.y_mm), body))
+          << "t = " << sim.time_s() << ", slot " << s;
+    }
+  }
+  EXPECT_THROW(sim.add_stylus_sample({0.0, 1.0, 1.0, true, false}), std::invalid_argument);  // not later
+  Simulation without(pool_scene(4.0, 5.0, 2.0, 1.0), kCpu);
+  EXPECT_THROW(without.add_stylus_sample({0.0, 1.0, 1.0, true, false}), std::invalid_argument);
 }
 
 }  // namespace
