@@ -32,7 +32,7 @@ void cpu_twin(InstrumentPhase phase, const InstrumentArgs& a, int threads) {
       break;
     case InstrumentPhase::contact:
       // Each particle moves only itself: any thread count gives the same bytes.
-      parallel_rows(a.live_count, std::max(1, std::min(threads, a.live_count / 4096)),
+      parallel_rows(a.live_count, threads_for_particles(a.live_count, threads),
                     [&](int t) { keep_out_of_tip(a, live_slot(a, t)); });
       break;
   }

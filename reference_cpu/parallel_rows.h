@@ -24,4 +24,12 @@ void parallel_rows(int rows, int threads, const RowFn& row_fn) {
   for (std::thread& helper : helpers) helper.join();
 }
 
+// Fewer particles than this are not worth starting a thread for.
+constexpr int kParticlesPerThread = 4096;
+
+// The threads a loop over `count` particles runs on: at most `threads`, at least one.
+inline int threads_for_particles(int count, int threads) {
+  return std::max(1, std::min(threads, count / kParticlesPerThread));
+}
+
 }  // namespace bleedsim

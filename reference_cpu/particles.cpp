@@ -9,11 +9,6 @@
 namespace bleedsim {
 namespace {
 
-// Fewer particles than this are not worth starting threads for.
-constexpr int kParticlesPerThread = 4096;
-
-int threads_for(int count, int threads) { return std::max(1, std::min(threads, count / kParticlesPerThread)); }
-
 // Calls fn(slot) for every live slot in ascending slot order: the order a stable sort keeps ties in.
 template <class Fn>
 void for_live_slots_in_order(const ParticleArgs& a, const Fn& fn) {
@@ -67,10 +62,10 @@ void cpu_twin(ParticlePhase phase, const ParticleArgs& a, int threads) {
       bin(a);
       break;
     case ParticlePhase::collide:
-      parallel_rows(n, threads_for(n, threads), [&](int i) { collide_particle(a.arrays, a.model, i); });
+      parallel_rows(n, threads_for_particles(n, threads), [&](int i) { collide_particle(a.arrays, a.model, i); });
       break;
     case ParticlePhase::integrate:
-      parallel_rows(n, threads_for(n, threads), [&](int t) { integrate_particle(a.arrays, a.model, live_slot(a, t)); });
+      parallel_rows(n, threads_for_particles(n, threads), [&](int t) { integrate_particle(a.arrays, a.model, live_slot(a, t)); });
       break;
   }
 }

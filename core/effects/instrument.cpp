@@ -20,20 +20,20 @@ std::optional<ToolSample> instrument_at(const Scene& scene, const std::vector<To
 
 }  // namespace
 
-Instrument::Instrument(const Scene& scene, Backend& backend, int capacity)
-    : path_(scripted_tool(scene.tips)), scratch_(backend.allocate(candidates_bytes(capacity))) {
-  if (scene.suction)
-    particles_per_step_ =
-        scene.suction->max_flow_mm3_per_s / particle_steps_per_s(scene) / scene.particles->particle_volume_mm3;
+Instrument::Instrument(const Scene& scene, Backend& backend, int capacity) : path_(scripted_tool(scene.tips)) {
+  if (!scene.suction) return;
+  particles_per_step_ =
+      scene.suction->max_flow_mm3_per_s / particle_steps_per_s(scene) / scene.particles->particle_volume_mm3;
+  scratch_ = backend.allocate(candidates_bytes(capacity));
   args_.candidates = scratch_.as<std::uint64_t>();
   args_.candidate_count = reinterpret_cast<std::uint32_t*>(args_.candidates + capacity);
   const std::uint64_t none = 0;
   backend.upload(args_.candidate_count, &none, sizeof none);
 }
 
-MemoryPart Instrument::memory_for(const Scene& scene) {
-  return {scene.suction ? "suction.radius_mm" : "contact.tip_radius_mm", "the instrument's candidates",
-          Count(candidates_bytes(scene.particles->capacity))};
+MemoryParts Instrument::memory_for(const Scene& scene) {
+  if (!scene.suction) return {};
+  return {{"particles.capacity", "the suction's candidates", Count(candidates_bytes(scene.particles->capacity))}};
 }
 
 void Instrument::act(const Scene& scene, const State& state, Backend& backend, const ParticleArgs& particles,

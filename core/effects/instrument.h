@@ -16,8 +16,8 @@ namespace bleedsim {
 class Instrument {
  public:
   Instrument(const Scene& scene, Backend& backend, int capacity);
-  // The candidates' keys: a slot's worth each.
-  static MemoryPart memory_for(const Scene& scene);
+  // With suction, the candidates' keys: a slot's worth each.
+  static MemoryParts memory_for(const Scene& scene);
 
   // After the sub-step over [t0, t1] has moved the particles: suction, then contact, at the tip's
   // place at t1. Particles it aspirates are counted in the arrays' fates.
@@ -28,7 +28,7 @@ class Instrument {
   std::vector<ToolSample> path_;      // a scripted path; empty: the stylus (State::stylus)
   double particles_per_step_ = 0.0;   // max_flow × dt / particle volume: the suction's quota a step
   std::uint64_t suction_steps_ = 0;   // sub-steps with the suction on so far
-  Buffer scratch_;                    // the candidates' keys, then their count
+  Buffer scratch_;                    // with suction: the candidates' keys, then their count
   InstrumentArgs args_{};
 };
 

@@ -69,7 +69,7 @@ MemoryParts ParticleStage::memory_for(const Scene& scene) {
       {p.cell_mm > 0 ? "particles.cell_mm" : "particles.diameter_mm",
        "a collision grid of " + std::to_string(particle_cell_count(scene).value()) + " cells", with_grid - per_slot},
       {"cut", "the particles' emitters", Count(std::max(kInitialEmitters, scene.cuts.size())) * sizeof(Emitter)}};
-  if (scene.suction || scene.contact) parts.push_back(Instrument::memory_for(scene));
+  for (const MemoryPart& part : Instrument::memory_for(scene)) parts.push_back(part);
   return parts;
 }
 

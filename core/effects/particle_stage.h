@@ -27,7 +27,7 @@ class ParticleStage final : public Stage {
   void track_live_particles();
 
   ParticleArgs args_{};
-  Field* counts_ = nullptr;  // the accounting, uploaded each frame (without aspirated, but with [suction])
+  Field* counts_ = nullptr;  // the accounting, uploaded each frame (aspirated only with [suction])
   ParticleAccounting accounting_;
   int substeps_;              // physics steps per frame
   Buffer scratch_;            // every array of ParticleArrays that is not a field
