@@ -14,11 +14,11 @@ constexpr std::size_t kInitialEmitters = 16;
 // CUB's radix sort needs a second copy of keys and values and a small histogram; this bounds it.
 std::size_t sort_scratch_bound(std::size_t capacity) { return 2 * capacity * 2 * sizeof(std::uint32_t) + (1u << 20); }
 
-// Particles a cut has emitted by time t: the blood its wound has given over the part of
-// [start, start + bleed] before t, a whole particle at a time.
 // emitted, alive, expired, overwritten; and aspirated in a scene with suction.
 int accounting_elements(const Scene& scene) { return scene.suction ? 5 : 4; }
 
+// Particles a cut has emitted by time t: the blood its wound has given over the part of
+// [start, start + bleed] before t, a whole particle at a time.
 std::uint64_t emitted_by(const Cut& cut, const Scene& scene, double t) {
   const double blood = cut_blood_mm3(cut, t, scene.pulse ? &*scene.pulse : nullptr);
   return std::uint64_t(std::floor(blood / scene.particles->particle_volume_mm3));

@@ -35,10 +35,17 @@ rounding:
 
 - for scenes with a [haptics] table (docs/haptics.md), the whole haptic channel replayed from the
   trace file (samples, contact, penetration, force, cutting), the force rising on contact and
-  within the cap, and the cuts the strokes lay, which the checks above then use.
+  within the cap, and the cuts the strokes lay, which the checks above then use;
+- for scenes with [vessels] and [pulse] (docs/bleeding.md), the emission schedule above from each
+  wound's mean of the PNG map along it and the waveform's integral in closed form, particle by
+  particle; with [suction] (the stylus its instrument), the five counts (emitted as scheduled; the
+  ids' alive, expired and overwritten less what the suction took of each; all five adding up), the
+  aspirated slots among the schedule's live ids, the suction within its quota ⌊k · flow · dt / V⌋
+  over the sub-steps k it was on, and no residue within its reach of its path; with [contact], no
+  live centre within the tip's body at a key frame that ends with the tip on the tissue.
 
 The particles' checks (accounting, live slots, film, blur) live in golden_film.py beside this file,
-the haptics' in golden_haptics.py.
+the haptics' in golden_haptics.py, the vessels', pulse's and instrument's in golden_bleeding.py.
 
 Run: /usr/bin/python3 tests/golden/check_goldens.py [repo root] [--golden-dir DIR]
 (DIR defaults to <repo root>/golden; the scenarios are always <repo root>/scenarios/golden.)
@@ -51,7 +58,9 @@ import tomllib
 import h5py
 import numpy as np
 
-from golden_film import check_blur, check_particles, pixel_centres
+from golden_bleeding import (check_contact, describe_wounds, suction_quota, suction_reach, sucking, vessel_map,
+                             with_vessels)
+from golden_film import check_blur, check_particles, particle_settings, pixel_centres
 from golden_haptics import check_haptics
 from scenario_defaults import defaults, fill_cut, load_params, read_scenario
 
@@ -185,9 +194,26 @@ def check_scene(root, golden, name, params):
         if keys != wanted_keys:
             problems.append(f"key frames {keys}, expected {wanted_keys}")
         frames, times = f["frame"][:], f["time"][:]
+        channel = None
         if "haptics" in scenario:   # the stylus' cuts follow the scripted ones, as in the run
-            scenario["cut"] += [fill_cut(cut, scenario, params)
-                                for cut in check_haptics(root, scenario, f, expected_frames, problems, notes)]
+            cuts, channel = check_haptics(root, scenario, f, expected_frames, problems, notes)
+            scenario["cut"] += [fill_cut(cut, scenario, params) for cut in cuts]
+        try:
+            density = vessel_map(root, scenario)
+        except ValueError as e:
+            problems.append(str(e))
+            return problems, notes
+        scenario["cut"] = [with_vessels(scenario, density, cut) for cut in scenario["cut"]]
+        if density is not None:
+            notes.append(describe_wounds(scenario["cut"]))
+        quota = None
+        if "suction" in scenario:
+            if channel is None:
+                problems.append("a golden scene with [suction] must replay a trace: its stylus is the instrument")
+                return problems, notes
+            channel["sucking"] = sucking(scenario, channel)
+            settings = particle_settings(scenario)
+            quota = suction_quota(scenario, channel, settings["steps_per_s"], (max(keys) + 1) * settings["substeps"])
         has_spread, has_particles = "spread" in scenario, "particles" in scenario
         has_blur = has_particles and "blur" in scenario   # the parser refuses [blur] without [particles]
         has_trail = has_particles and "trail" in scenario
@@ -202,12 +228,26 @@ def check_scene(root, golden, name, params):
                             f"effects make ({' '.join(wanted_fields)})")
             return problems, notes
         stains = f["spread/stain"][:] if has_spread else np.zeros(frames.shape[:3], dtype=np.float32)
-        splats = (check_particles(scenario, f, keys, problems, notes) if has_particles
+        splats = (check_particles(scenario, f, keys, problems, notes, quota) if has_particles
                   else np.zeros(frames.shape[:3], dtype=np.float32))
+        if "contact" in scenario and channel is not None:
+            check_contact(scenario, channel, keys, f["particles/position"][:], f["particles/age"][:],
+                          particle_settings(scenario)["lifetime"], problems, notes)
         films = check_blur(scenario, f, keys, splats, problems, notes) if has_blur else splats
         residues = f["trail/residue"][:] if has_trail else np.zeros(frames.shape[:3], dtype=np.float32)
-    if has_trail:   # what a pixel keeps is at least its share of the film over it now
-        short = residues < np.float32(scenario["trail"]["residue"]) * splats * (1 - 1e-6)
+    if has_trail:   # what a pixel keeps is at least its share of the film over it now, but where the suction dried it
+        dried = np.zeros(residues.shape, dtype=bool)
+        if quota is not None:
+            x, y = pixel_centres(scenario["scene"])
+            xx, yy = np.meshgrid(x, y)
+            for i, k in enumerate(keys):
+                surely, maybe = suction_reach(scenario, channel, k, xx, yy)
+                dried[i] = maybe
+                if (residues[i][surely] != 0).any():
+                    problems.append(f"key frame {k}: {(residues[i][surely] != 0).sum()} of the {surely.sum()} pixels "
+                                    f"within the suction's reach of its path keep a residue")
+            notes.append(f"trail: {dried.sum()} key-frame pixels near the suction's path")
+        short = (residues < np.float32(scenario["trail"]["residue"]) * splats * (1 - 1e-6)) & ~dried
         if short.any():
             problems.append(f"{short.sum()} pixels' residue is below trail.residue times the film over them")
     for i, k in enumerate(keys):

@@ -7,10 +7,12 @@ import math
 
 import numpy as np
 
+from golden_bleeding import blood_given_mm3
 from scenario_defaults import particle_substeps
 
 EDGE_MM = 1e-5           # a pixel centre this close to a splat's edge may fall either side in float32
 NEVER_USED = 0xFFFFFFFF  # the age of a ring slot that never held a particle
+ASPIRATED = 0x80000000   # the age's top bit: the suction took the particle (core/physics/particles.h)
 FLOAT32_UNIT = 2.0 ** -24       # float32's unit roundoff: one rounding is off by at most this, relatively
 
 # The film (core/physics/splat.h, docs/particles.md#the-film-of-blood): a live particle's blood as
@@ -52,8 +54,6 @@ def particle_settings(scenario):
     substeps = particle_substeps(scenario)
     steps_per_s = scenario["scene"]["frame_rate_hz"] * substeps
     lifetime = steps_in(p["lifetime_s"], steps_per_s)
-    cuts = [(c["start_s"], c["wound_mm"] * c["flow_mm3_per_s_per_mm"], c["bleed_s"], c["clot_s"])
-            for c in scenario["cut"]]
     diameter = p["diameter_mm"]
     return {
         "capacity": p["capacity"],
@@ -64,7 +64,8 @@ def particle_settings(scenario):
         "steps_per_s": steps_per_s,
         "lifetime": lifetime,
         "fade": min(lifetime, steps_in(p["fade_s"], steps_per_s)),
-        "cuts": cuts,
+        "cuts": scenario["cut"],   # each with its vessel density (golden_bleeding.with_vessels)
+        "pulse": scenario.get("pulse"),
     }
 
 
@@ -72,15 +73,14 @@ def emission_steps(settings, steps):
     """The step each particle id was emitted in, for the first `steps` steps.
 
     A cut has emitted floor(blood given so far / V) particles by time t, the blood being its
-    wound's flow (mm³/s) over the time bled so far s, or clot·(1 − e^(−s/clot)) of it as it clots;
-    step n runs from n/sps to (n+1)/sps and emits the difference. Ids count emissions in step order
+    wound's flow (mm³/s) over the time bled so far s, or clot·(1 − e^(−s/clot)) of it as it clots,
+    or the beating waveform's integral (golden_bleeding.blood_given_mm3); step n runs from n/sps to
+    (n+1)/sps and emits the difference. Ids count emissions in step order
     (and cut order within a step, which does not matter here: a step's particles share their step)."""
     t = np.arange(steps + 1) / settings["steps_per_s"]
     per_step = np.zeros(steps, dtype=np.int64)
-    for start, flow, bleed, clot in settings["cuts"]:
-        bled = np.clip(t - start, 0.0, bleed)
-        given = flow * (clot * -np.expm1(-bled / clot) if clot > 0 else bled)
-        by = np.floor(given / settings["volume"]).astype(np.int64)
+    for cut in settings["cuts"]:
+        by = np.floor(blood_given_mm3(cut, t, settings["pulse"]) / settings["volume"]).astype(np.int64)
         per_step += np.diff(by)
     return np.repeat(np.arange(steps, dtype=np.int64), per_step)
 
@@ -103,6 +103,21 @@ def replay(settings, step_of_id, steps_done):
     alive = ~overwritten & ~expired
     age = steps_done - s
     return emitted, alive, expired, overwritten, age
+
+
+def check_aspirated_counts(k, stored, by_id, quota, problems):
+    """With [suction]: emitted as the schedule gives it, and each particle in one state, as the ids
+    have them (alive, expired, overwritten) less what the suction took of each; the suction within
+    its quota."""
+    emitted, alive, expired, overwritten, aspirated = stored
+    if emitted != by_id[0] or alive + expired + overwritten + aspirated != emitted:
+        problems.append(f"key frame {k}: accounting (emitted, alive, expired, overwritten, aspirated) is {stored}: "
+                        f"the schedule emits {by_id[0]}, and the five must add up")
+    if alive > by_id[1] or expired > by_id[2] or overwritten > by_id[3]:
+        problems.append(f"key frame {k}: accounting {stored[1:4]} exceeds the ids' own {by_id[1:]}: the suction "
+                        f"only takes from them")
+    if aspirated > quota:
+        problems.append(f"key frame {k}: {aspirated} aspirated, past the suction's quota of {quota}")
 
 
 # ---- the film of blood -----------------------------------------------------------------------
@@ -237,8 +252,9 @@ def expected_thickness(settings, scene, position, age):
             "counts": (int(shares.sum()), int(falls_back.sum()), int(either.sum()))}
 
 
-def check_particles(scenario, f, keys, problems, notes):
-    """Checks 1–5 of the particle state and its film; returns each key frame's film (mm)."""
+def check_particles(scenario, f, keys, problems, notes, quota=None):
+    """Checks 1–5 of the particle state and its film; returns each key frame's film (mm). In a scene
+    with [suction], `quota` is the most it may have taken by the end of each step."""
     scene = scenario["scene"]
     settings = particle_settings(scenario)
     capacity, lifetime, r = settings["capacity"], settings["lifetime"], settings["radius"]
@@ -256,9 +272,11 @@ def check_particles(scenario, f, keys, problems, notes):
         emitted, alive, expired, overwritten, age = replay(settings, step_of_id, steps_done)
         wanted = [emitted, int(alive.sum()), int(expired.sum()), int(overwritten.sum())]
         stored = [int(c) for c in counts[i]]
-        if stored != wanted:
+        if quota is None and stored != wanted:
             problems.append(f"key frame {k}: accounting (emitted, alive, expired, overwritten) is {stored}, "
                             f"the schedule gives {wanted}")
+        if quota is not None:
+            check_aspirated_counts(k, stored, wanted, int(quota[steps_done - 1]), problems)
         # 2. The slots: the newest id written into each slot decides what it holds.
         ids = np.arange(emitted)
         live_ids = ids[alive]
@@ -271,10 +289,14 @@ def check_particles(scenario, f, keys, problems, notes):
                             f"the accounting says {stored[1]} alive")
         wanted_live = np.zeros(capacity, dtype=bool)
         wanted_live[live_ids % capacity] = True
-        if not np.array_equal(live, wanted_live):
-            wrong = np.flatnonzero(live != wanted_live)
+        # The suction's particles keep their slots and age there, marked: the schedule's live ids are
+        # the living and the aspirated, and nothing else lives.
+        aspirated = (slot_age != NEVER_USED) & ((slot_age & ASPIRATED) != 0)
+        if not np.array_equal(live, wanted_live & ~aspirated) or (quota is None and aspirated.any()):
+            wrong = np.flatnonzero(live != (wanted_live & ~aspirated))
             problems.append(f"key frame {k}: {wrong.size} slots live or dead against the schedule's live ids "
-                            f"(first: slot {wrong[0]})")
+                            f"(first: slot {wrong[0] if wrong.size else '-'}; {aspirated.sum()} aspirated)")
+        slot_age = np.where(aspirated, slot_age & ~ASPIRATED, slot_age)
         wanted_age = np.full(capacity, -1, dtype=np.int64)
         wanted_age[live_ids % capacity] = age[live_ids]
         off = wanted_live & (slot_age != wanted_age)
@@ -326,6 +348,8 @@ def check_particles(scenario, f, keys, problems, notes):
         elif volume > 0.0:
             worst_volume = max(worst_volume, abs(held - volume) / slack)
             widest_volume = max(widest_volume, slack / volume)
+    if quota is not None:
+        notes.append(f"{int(counts[-1][4])} aspirated by the last key frame, its quota {int(quota[-1])}")
     notes.append(f"{int(counts[-1][0])} emitted; film recomputed on {film_pixels} pixels, worst "
                  f"{worst_share:.2f} of the float32 allowance; splats shared among the pixel centres they "
                  f"reach {splats[0]}, whole into the pixel holding their centre {splats[1]}, either {splats[2]}")

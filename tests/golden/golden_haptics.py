@@ -75,26 +75,29 @@ def cuts_along_strokes(channel):
             continue
         x, y = channel["panel_position"][n]
         if last is None or math.sqrt((x - last[0]) ** 2 + (y - last[1]) ** 2) >= channel["spacing"]:
+            # Each stands for cut_spacing_mm of the stroke's wound, in the direction the stroke came
+            # from its last cut (along x for its first).
+            angle = math.atan2(y - last[1], x - last[0]) * 180.0 / math.pi if last is not None else 0.0
             last = (x, y)
-            # Each stands for the stroke's wound up to the next cut: cut_spacing_mm of it.
             cuts.append({"x_mm": float(x), "y_mm": float(y), "start_s": float(n) / HAPTIC_RATE_HZ,
-                         "wound_mm": channel["spacing"]})
+                         "wound_mm": channel["spacing"], "wound_angle_deg": angle})
     return cuts
 
 
 def check_haptics(root, scenario, f, frames, problems, notes):
-    """Checks /haptics in keyframes.h5 against the replay; returns the cuts the stylus made."""
+    """Checks /haptics in keyframes.h5 against the replay; returns the cuts the stylus made and the
+    replayed channel (its ticks' time, panel position, contact and buttons)."""
     fps = scenario["scene"]["frame_rate_hz"]
     ticks = math.floor(frames * HAPTIC_RATE_HZ / fps) + 1   # ticks 0 .. the last frame's end
     trace_path = (root / "scenarios/golden" / scenario["haptics"]["trace"]).resolve()
     want = expected_channel(scenario, trace_path, ticks)
     if "haptics" not in f:
         problems.append("keyframes.h5 has no /haptics: the haptic channel is not pinned")
-        return []
+        return [], want
     got = {name: f["haptics"][name][()] for name in f["haptics"]}
     if got["time"].shape != (ticks,):
         problems.append(f"/haptics holds {got['time'].shape[0]} ticks, expected {ticks}")
-        return []
+        return [], want
     if not np.array_equal(got["time"], np.arange(ticks) / HAPTIC_RATE_HZ):
         problems.append("/haptics/time is not n / 1000 s")
     for name, tolerance in (("tool_position", POSITION_TOLERANCE_M), ("panel_position", 1e-9),
@@ -126,4 +129,4 @@ def check_haptics(root, scenario, f, frames, problems, notes):
     cuts = cuts_along_strokes(want)
     notes.append(f"haptics: {ticks} ticks replayed from {trace_path.name}, {len(onsets)} contacts, "
                  f"force up to {force[:, 2].max():.3f} N (cap {want['cap']} N), {len(cuts)} cuts")
-    return cuts
+    return cuts, want

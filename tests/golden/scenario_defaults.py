@@ -12,7 +12,7 @@ import json
 import math
 import subprocess
 
-TABLES = ("scene", "spread", "particles", "blur", "trail", "optics", "haptics")
+TABLES = ("scene", "spread", "particles", "blur", "trail", "optics", "haptics", "vessels", "pulse", "suction", "contact")
 
 
 def load_params(bleedsim):
