@@ -12,6 +12,7 @@
 #include "core/effects/particle_model.h"
 #include "core/io/scenario.h"
 #include "core/haptics/trace_replay.h"
+#include "core/runtime/message_text.h"
 
 namespace bleedsim::cli {
 namespace {
@@ -78,6 +79,36 @@ void describe_particles(const Scene& scene, std::int64_t stylus_cuts) {
                 alive, p.lifetime_s, p.capacity);
 }
 
+// Where and how hard the wounds bleed, and the instrument (docs/bleeding.md).
+void describe_bleeding(const Scene& scene) {
+  if (scene.vessels)
+    std::printf("  vessels    each wound's flow times the map's mean along it; map %s\n", scene.vessels->map.c_str());
+  if (scene.pulse) {
+    const PulseParams& q = *scene.pulse;
+    std::printf("  pulse      %g beats a minute, w(t) = 1 + %g sin(2πft) + %g sin(4πft); arterial: cuts marked so%s\n",
+                q.heart_rate_per_min, q.systolic, q.dicrotic,
+                scene.vessels ? (", and wounds of mean vessel density ≥ " + format_number(q.arterial_density)).c_str()
+                              : "");
+  }
+  if (!scene.suction && !scene.contact) return;
+  const std::string instrument =
+      scene.tips.empty()
+          ? "the stylus"
+          : "a scripted tip, " + std::to_string(scene.tips.size()) + " points from " +
+                format_number(scene.tips.front().t_s) + " s to " + format_number(scene.tips.back().t_s) + " s";
+  if (scene.suction) {
+    const SuctionParams& s = *scene.suction;
+    std::printf("  suction    %s: reach %g mm, up to %g mm³/s (%.3g particles a sub-step)", instrument.c_str(),
+                s.radius_mm, s.max_flow_mm3_per_s,
+                s.max_flow_mm3_per_s / particle_steps_per_s(scene) / scene.particles->particle_volume_mm3);
+    if (scene.tips.empty()) std::printf(", in contact with a button of 0x%x held", unsigned(s.buttons));
+    std::printf("\n");
+  }
+  if (scene.contact)
+    std::printf("  contact    %s: particle centres kept %g mm from the tip (its radius and a particle's)\n",
+                instrument.c_str(), scene.contact->tip_radius_mm + scene.particles->diameter_mm / 2.0);
+}
+
 }  // namespace
 
 int validate_command(const std::string& scenario) {
@@ -97,6 +128,7 @@ int validate_command(const std::string& scenario) {
   std::printf("  stages     %s\n", stages.c_str());
   const std::int64_t stylus_cuts = scene.trace ? describe_haptics(scene) : 0;
   if (scene.particles) describe_particles(scene, stylus_cuts);
+  describe_bleeding(scene);
   std::printf("  memory     %s on the backend\n", human_bytes(double(Pipeline::backend_bytes(scene))).c_str());
   std::printf("  output     %s (HDF5 %s, PNG %s)\n", out.dir.c_str(), out.hdf5 ? "on" : "off",
               out.png_every > 0 ? ("every " + std::to_string(out.png_every)).c_str() : "off");

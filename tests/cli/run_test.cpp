@@ -166,6 +166,29 @@ TEST(Validate, DescribesTheParticlesAndWarnsWhenTheRingWillOverwriteLiveBlood) {
   EXPECT_EQ(large.output.find("warning"), std::string::npos) << large.output;
 }
 
+// The bleeding effects and the instrument as validate describes them, from the files: suction-pass's
+// scripted tip (2 points, 2.5 to 4 s), its reach 1.2 mm and 8 mm³/s, its body 0.6 + 0.2 / 2 mm; the
+// stylus' suction on the second button (0x2) in falcon-suction; vessels-pulse's map and threshold.
+TEST(Validate, DescribesTheBleedingAndTheInstrument) {
+  const CliResult scripted = run_cli("validate '" + scenario("suction-pass.toml") + "'");
+  ASSERT_EQ(scripted.exit_code, 0) << scripted.output;
+  EXPECT_NE(scripted.output.find("suction    a scripted tip, 2 points from 2.5 s to 4 s: reach 1.2 mm, up to 8 mm³/s"),
+            std::string::npos) << scripted.output;
+  EXPECT_NE(scripted.output.find("contact    a scripted tip, 2 points from 2.5 s to 4 s: particle centres kept 0.7 mm"),
+            std::string::npos) << scripted.output;
+  const CliResult stylus = run_cli("validate '" + scenario("falcon-suction.toml") + "'");
+  ASSERT_EQ(stylus.exit_code, 0) << stylus.output;
+  EXPECT_NE(stylus.output.find("suction    the stylus: reach 1 mm, up to 6 mm³/s"), std::string::npos) << stylus.output;
+  EXPECT_NE(stylus.output.find("in contact with a button of 0x2 held\n"), std::string::npos) << stylus.output;
+  const CliResult vessels = run_cli("validate '" + scenario("vessels-pulse.toml") + "'");
+  ASSERT_EQ(vessels.exit_code, 0) << vessels.output;
+  EXPECT_NE(vessels.output.find("vessels    each wound's flow times the map's mean along it; map procedural\n"),
+            std::string::npos) << vessels.output;
+  EXPECT_NE(vessels.output.find("pulse      72 beats a minute, w(t) = 1 + 0.6 sin(2πft) + 0.3 sin(4πft); arterial: cuts "
+                                "marked so, and wounds of mean vessel density ≥ 0.6\n"),
+            std::string::npos) << vessels.output;
+}
+
 TEST(Backend, AutoSaysWhichBackendItTookAndWhy) {
   const CliResult result = run_cli("run '" + scenario("golden/spread-single.toml") + "' --no-hdf5 --out '" +
                                    (scratch_folder() / "out").string() + "'");
