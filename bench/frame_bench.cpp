@@ -2,8 +2,9 @@
 // splat, each pass of the blur (downsample, horizontal, vertical, upsample) and the four together,
 // the blend, and the whole frame (spread + splat + the four blur passes + blend); and the endoscope's
 // view: the trail, the blend lit by the headlight with highlights over the residue too, and the whole
-// lit frame (the frame's stages + trail + the lit blend). On CUDA at 1920×1080 and 3840×2160 with
-// 1,048,576 particles; on the CPU reference at 1920×1080 with 65,536.
+// lit frame (the frame's stages + trail + the lit blend); the trail also where the suction swept the
+// panel (a stylus's path over one frame, a segment a haptic tick). On CUDA at 1920×1080 and
+// 3840×2160 with 1,048,576 particles; on the CPU reference at 1920×1080 with 65,536.
 //
 // The particles are input only (no physics runs): N particles of the default 0.2 mm diameter on a
 // hexagonal lattice at the bottom of the panel, touching, all alive (age 0, a lifetime as long as a scene may ask),
@@ -34,10 +35,12 @@
 #include "core/runtime/backend.h"
 #include "core/effects/blend_stage.h"
 #include "core/effects/blur_stage.h"
+#include "core/effects/instrument.h"
 #include "core/effects/trail_stage.h"
 #include "core/effects/particle_model.h"
 #include "core/runtime/scene.h"
 #include "core/effects/splat_stage.h"
+#include "core/haptics/haptic_params.h"
 #include "core/runtime/tissue.h"
 
 namespace bleedsim {
@@ -50,6 +53,10 @@ constexpr int kCutCount = 8;
 // The panel for 2²⁰ particles of the default diameter; other N scale it by √(N / 2²⁰).
 constexpr double kPanelWidthMm = 480.0, kPanelHeightMm = 270.0;
 constexpr double kReferenceParticles = 1048576.0;
+constexpr double kSweepSpeed = 20.0;  // mm/s: the suction's tip, sideways through the pile
+// The trail's swept cases: a segment (a scripted path's frame, between two of its points) and a
+// stylus's frame at 30 Hz (a segment a haptic tick, 1 kHz: 34 in the first frame).
+constexpr int kSweeps[] = {1, 34};
 
 enum class Work { spread, splat, downsample, horizontal, vertical, upsample, blur, blend, frame, trail, blend_lit, frame_lit };
 
@@ -110,7 +117,9 @@ struct FrameScene {
   double film_max_mm = 0.0;    // the blurred film after one frame: its thickest pixel ...
   double film_share = 0.0;     // ... and the share of the panel it covers
 
-  Buffer position, age, units, film, weights, low, across, blurred, cuts, stain, tissue, tables, residue, frame_rgba;
+  Buffer position, age, units, film, weights, low, across, blurred, cuts, stain, tissue, tables, residue, frame_rgba,
+      sweep;
+  int sweep_segments = 0;  // the suction's path over one frame: the most a swept case may take
   SpreadPixel spread_work{};
   SplatArgs splat_args{};
   BlurArgs blur_args{};
@@ -214,6 +223,25 @@ struct FrameScene {
     trail_work = {film.as<const float>(), residue.as<float>(), float(lit.trail->residue),
                   trail_decay_per_frame(*lit.trail, lit.frame_rate_hz), grid};
 
+    // The suction's sweep, for the trail's swept cases: the stylus's samples over the first frame,
+    // one a haptic tick, its tip moving sideways through the middle of the pile with the suction
+    // on; suction_sweep() makes of them the segments the trail stage dries (34 at 30 Hz).
+    Scene sucking = lit;
+    sucking.suction = SuctionParams{};
+    State stylus;
+    const double frame_s = 1.0 / scene.frame_rate_hz;
+    for (int tick = 0; tick <= int(std::ceil(frame_s / kHapticPeriod_s)); ++tick) {
+      const double t_s = tick * kHapticPeriod_s;
+      stylus.stylus.push_back({t_s, scene.domain.width_mm / 2.0 + kSweepSpeed * t_s,
+                               scene.domain.height_mm - pile_height_mm / 2.0, true, true});
+    }
+    const std::vector<float> segments = suction_sweep(sucking, stylus, 0.0, frame_s);
+    sweep = backend->allocate(segments.size() * sizeof(float));
+    backend->upload(sweep.data(), segments.data(), sweep.bytes());
+    sweep_segments = int(segments.size() / 4);
+    trail_work.sweep = sweep.as<const float>();
+    trail_work.reach_sq = float(sucking.suction->radius_mm * sucking.suction->radius_mm);
+
     // One frame, to see that the film is there.
     frame();
     std::vector<float> result(pixels);
@@ -282,7 +310,9 @@ FrameScene* scene_or_skip(BackendKind kind, const Size& size, int n, benchmark::
   return scene.get();
 }
 
-void time_frame(benchmark::State& state, BackendKind kind, const Size& size, int n, Work work) {
+// `sweep`: the trail dries where the suction swept this frame, along the first `sweep` segments
+// of the stylus's path (0: nowhere).
+void time_frame(benchmark::State& state, BackendKind kind, const Size& size, int n, Work work, int sweep) {
   try {
     FrameScene* scene = scene_or_skip(kind, size, n, state);
     if (!scene) return;
@@ -290,6 +320,7 @@ void time_frame(benchmark::State& state, BackendKind kind, const Size& size, int
       state.SkipWithError(("frame not measured: " + scene->problem).c_str());
       return;
     }
+    scene->trail_work.sweep_segments = std::min(sweep, scene->sweep_segments);
     scene->frame();  // every buffer holds what a frame leaves in it
     for (int i = 0; i < kWarmUpRuns; ++i) scene->run(work);
     double total_ms = 0.0;
@@ -323,6 +354,7 @@ void time_frame(benchmark::State& state, BackendKind kind, const Size& size, int
         break;
       default: state.counters["Mpixel/s"] = panel / (ms * 1e3); break;
     }
+    if (sweep > 0) state.counters["sweep_segments"] = scene->trail_work.sweep_segments;
     char scale[32];
     std::snprintf(scale, sizeof scale, "%g mm/px", double(scene->scene.domain.grid().mm_per_px_x));
     state.SetLabel(scene->backend->device_name() + ", " + scale);
@@ -331,11 +363,11 @@ void time_frame(benchmark::State& state, BackendKind kind, const Size& size, int
   }
 }
 
-void register_case(BackendKind kind, const Size& size, int n, Work work) {
+void register_case(BackendKind kind, const Size& size, int n, Work work, int sweep = 0) {
   const std::string name = std::string("Frame/") + to_string(kind) + "/" + name_of(work) + "/" + size.name + "/" +
-                           std::to_string(n);
-  benchmark::RegisterBenchmark(name.c_str(), [kind, size, n, work](benchmark::State& state) {
-    time_frame(state, kind, size, n, work);
+                           std::to_string(n) + (sweep > 0 ? "/sweep_segments:" + std::to_string(sweep) : "");
+  benchmark::RegisterBenchmark(name.c_str(), [kind, size, n, work, sweep](benchmark::State& state) {
+    time_frame(state, kind, size, n, work, sweep);
   })
       ->UseManualTime()
       ->Iterations(kIterations)
@@ -353,8 +385,11 @@ void register_frame_benchmarks() {
                         Work::vertical, Work::upsample, Work::blur,       Work::blend,
                         Work::frame,    Work::trail,    Work::blend_lit,  Work::frame_lit};
   for (const Work work : works) register_case(BackendKind::cpu, k1080p, 65536, work);
-  for (const Size& size : {k1080p, k2160p})
+  for (const int sweep : kSweeps) register_case(BackendKind::cpu, k1080p, 65536, Work::trail, sweep);
+  for (const Size& size : {k1080p, k2160p}) {
     for (const Work work : works) register_case(BackendKind::cuda, size, 1048576, work);
+    for (const int sweep : kSweeps) register_case(BackendKind::cuda, size, 1048576, Work::trail, sweep);
+  }
 }
 
 void release_frame_benchmarks() { cached_scene().reset(); }

@@ -1,21 +1,27 @@
 // The particle step's phases against the 1 ms haptic tick, in the state a running scene spends its
 // time in: a settled pile. Emit, bin (cell keys, stable sort, cell ranges, sorted copies), collide,
-// integrate and the whole step (emit + bin + collide + integrate), on CUDA at 65,536, 1,048,576 and
-// 4,194,304 particles and on the CPU reference at 65,536; and the grid step against an all-pairs
-// baseline (bench/all_pairs.h) at 65,536 on CUDA and 8,192 on the CPU.
+// integrate and the whole step (emit + bin + collide + integrate); the instrument's part of a step
+// (core/effects/instrument.h) with its tip in the pile: the suction at the default flow's quota and
+// at the whole reach, the contact of a tip moving through it, and the step with both; on CUDA at
+// 65,536, 1,048,576 and 4,194,304 particles and on the CPU reference at 65,536; and the grid step
+// against an all-pairs baseline (bench/all_pairs.h) at 65,536 on CUDA and 8,192 on the CPU.
 //
-// The scene is built here, not read from a file: the default ParticleParams at 30 Hz, a panel
-// as wide as the pile and twice its height, the N particles (capacity N) on a hexagonal lattice at
-// its bottom, √(N/16) rows deep (at least 24: 64 rows at 65,536, 512 at 4,194,304, so that the
-// panel stays under two metres wide and float32 positions resolve its overlaps), at rest and past
-// their birth (their pairs at full strength). The contact is the model's, made stiff for that pile.
-// It runs kSettleSteps steps (more, in chunks, while more than kStillMoving of its particles drift
-// faster than kMovingSpeed over a chunk) and only then is it timed; the settled state is kept on the backend
-// and restored before every timed run that changes it, so each run starts from the same pile. One
-// pile is settled per size and backend and shared by that size's phases; the counters say how much
-// of it still moves. The model makes one neighbour pass a step (collide): the collide phase's
-// time is its cost per neighbour pass (the per_pass_ms counter), the figure to compare with a
-// model that iterates; the step's neighbour_passes counter says how many a step makes.
+// The scene is built here, not read from a file: the default ParticleParams, [suction] and
+// [contact] at 30 Hz, a panel as wide as the pile and twice its height, the N particles (capacity
+// N) on a hexagonal lattice at its bottom, √(N/16) rows deep (at least 24: 64 rows at 65,536, 512
+// at 4,194,304, so that the panel stays under two metres wide and float32 positions resolve its
+// overlaps), at rest and past their birth (their pairs at full strength). The contact is the
+// model's, made stiff for that pile. It runs kSettleSteps steps (more, in chunks, while more than
+// kStillMoving of its particles drift faster than kMovingSpeed over a chunk) and only then is it
+// timed; the settled state is kept on the backend and restored before every timed run that changes
+// it, so each run starts from the same pile. One pile is settled per size and backend and shared by
+// that size's phases; the counters say how much of it still moves. The model makes one neighbour
+// pass a step (collide): the collide phase's time is its cost per neighbour pass (the per_pass_ms
+// counter), the figure to compare with a model that iterates; the step's neighbour_passes counter
+// says how many a step makes. The instrument's tip is at the middle of the pile's width, one
+// suction radius under its surface (the whole reach in blood), moving sideways at kTipSpeed; its
+// cases run Instrument::act_at, the launches a scene's sub-step makes, with the tip and quota
+// given here.
 // docs/benchmarks.md ("Particles") says what each number means.
 #include <algorithm>
 #include <cmath>
@@ -24,6 +30,7 @@
 #include <exception>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -31,6 +38,7 @@
 #include "bench/all_pairs.h"
 #include "bench/bench_util.h"
 #include "core/runtime/backend.h"
+#include "core/effects/instrument.h"
 #include "core/effects/particle_buffers.h"
 #include "core/effects/particle_model.h"
 #include "core/physics/particles.h"
@@ -57,8 +65,12 @@ constexpr int kIterations = 20;         // timed runs per repetition
 constexpr int kAllPairsIterations = 5;  // the O(N²) baseline is slow
 constexpr int kRepetitions = 5;
 constexpr int kNeighbourPassesPerStep = 1;  // collide_particle: the model does not iterate
+constexpr double kTipSpeed = 20.0;          // mm/s: the instrument's tip, sideways through the pile
 
-enum class Work { emit, bin, collide, integrate, step, all_pairs_step };
+enum class Work {
+  emit, bin, collide, integrate, step, all_pairs_step,
+  suction, suction_whole_reach, contact, step_with_instrument
+};
 
 const char* name_of(Work work) {
   switch (work) {
@@ -68,6 +80,10 @@ const char* name_of(Work work) {
     case Work::integrate: return "integrate";
     case Work::step: return "step";
     case Work::all_pairs_step: return "all_pairs_step";
+    case Work::suction: return "suction";
+    case Work::suction_whole_reach: return "suction_whole_reach";
+    case Work::contact: return "contact";
+    case Work::step_with_instrument: return "step_with_instrument";
   }
   return "?";
 }
@@ -82,6 +98,8 @@ Scene pile_scene(int n) {
   scene.name = "settled pile (bench/particle_bench.cpp)";
   scene.seed = 1;
   scene.particles = ParticleParams{};
+  scene.suction = SuctionParams{};
+  scene.contact = ContactParams{};
   ParticleParams& p = *scene.particles;
   p.capacity = n;
   const double pile_height_mm = (rows_for(n) - 1) * std::sqrt(3.0) / 2.0 * p.diameter_mm + p.diameter_mm;
@@ -113,6 +131,11 @@ struct Pile {
   double moving_share = 0.0;     // of the particles, drifting faster than kMovingSpeed
   std::vector<float> last_xy;    // positions at the last measure(), for the drift
   double bottom_overlap = 0.0;   // mm: the bottom row's overlap with the row above, mean
+  std::optional<Instrument> instrument;  // its tip in the settled pile, sucking and touching:
+  ToolSample tip, tip_before;            // where it is, and where it was a sub-step before
+  std::uint32_t flow_quota = 0;          // the default flow's quota in its busiest steps
+  std::uint32_t reach = 0;               // particles within the suction's reach
+  int in_body = 0;                       // particles inside the tip's body, which contact moves
 
   Pile(std::unique_ptr<Backend> b, int count)
       : backend(std::move(b)), n(count), threads(int(std::max(1u, std::thread::hardware_concurrency()))),
@@ -175,6 +198,18 @@ struct Pile {
     copy(settled_velocity.data(), a.velocity, pairs);
     copy(settled_age.data(), a.age, words);
     backend->synchronize();
+
+    // The instrument: its tip one suction radius under the pile's surface (its highest centre), at
+    // the middle of its width. What it does there is measured on the backend, once each, undone.
+    instrument.emplace(scene, *backend, n);
+    double top = scene.domain.height_mm;  // y grows downward
+    for (std::size_t i = 1; i < last_xy.size(); i += 2) top = std::min(top, double(last_xy[i]));
+    tip = {0.0, scene.domain.width_mm / 2.0, top + scene.suction->radius_mm, true, true};
+    tip_before = tip;
+    tip_before.x_mm -= kTipSpeed * args.model.dt_s;
+    flow_quota = std::uint32_t(std::ceil(instrument->particles_per_step()));
+    reach = std::uint32_t(taken_by(std::uint32_t(n)));
+    in_body = moved_by_contact();
   }
 
   void emit() { backend->run("particles", ParticlePhase::emit, args); }
@@ -192,6 +227,24 @@ struct Pile {
 #endif
   }
   void all_pairs_step() { emit(); all_pairs_collide(); integrate(); }
+  // The instrument's launches in a sub-step: the suction taking up to `quota` (none at 0), the
+  // contact when `touching`.
+  void instrument_acts(std::uint32_t quota, bool touching) {
+    ToolSample at = tip;
+    at.contact = touching;
+    instrument->act_at(*backend, args, at, tip_before, args.model.dt_s, quota);
+  }
+  void step_with_instrument() { step(); instrument_acts(flow_quota, true); }
+
+  // Particles the suction takes from the settled pile with this quota (one run, undone).
+  std::uint64_t taken_by(std::uint32_t quota) {
+    const std::uint64_t before = aspirated();
+    restore();
+    instrument_acts(quota, false);
+    const std::uint64_t taken = aspirated() - before;
+    restore();
+    return taken;
+  }
 
   // Back to the settled pile: the state a phase changes (positions, velocities, ages).
   void restore() {
@@ -202,6 +255,26 @@ struct Pile {
   }
 
  private:
+  std::uint64_t aspirated() {
+    AspiratedFates fates;
+    backend->download(&fates, args.arrays.fates, sizeof fates);
+    return fates.aspirated;
+  }
+
+  // Particles the tip's body moves in the settled pile (one run, undone).
+  int moved_by_contact() {
+    const std::size_t count = 2 * std::size_t(n);
+    std::vector<float> before(count), after(count);
+    restore();
+    backend->download(before.data(), args.arrays.position, count * sizeof(float));
+    instrument_acts(0, true);
+    backend->download(after.data(), args.arrays.position, count * sizeof(float));
+    restore();
+    int moved = 0;
+    for (int s = 0; s < n; ++s) moved += before[2 * s] != after[2 * s] || before[2 * s + 1] != after[2 * s + 1];
+    return moved;
+  }
+
   void copy(void* dst, const void* src, std::size_t bytes) {
     if (backend->kind() == BackendKind::cpu) {
       std::memcpy(dst, src, bytes);
@@ -308,7 +381,8 @@ double time_runs(benchmark::State& state, Pile& pile, const std::function<void()
   return total_ms / double(state.iterations());
 }
 
-// The grid step's median over kIterations runs, for the all-pairs benchmark's comparison.
+// The grid step's median over kIterations runs, beside the all-pairs step and the step with the
+// instrument.
 double grid_step_ms(Pile& pile) {
   std::vector<double> ms;
   for (int i = 0; i < kWarmUpRuns + kIterations; ++i) {
@@ -334,6 +408,7 @@ void time_particles(benchmark::State& state, BackendKind kind, int n, Work work)
     pile->bin();
     pile->collide();
     const std::function<void()> restore = [pile] { pile->restore(); }, nothing = [] {};
+    const std::uint32_t quota = work == Work::suction_whole_reach ? pile->reach : pile->flow_quota;
     double ms = 0.0, grid_ms = 0.0;
     switch (work) {
       case Work::emit: ms = time_runs(state, *pile, restore, [pile] { pile->emit(); }); break;
@@ -344,6 +419,16 @@ void time_particles(benchmark::State& state, BackendKind kind, int n, Work work)
       case Work::all_pairs_step:
         grid_ms = grid_step_ms(*pile);
         ms = time_runs(state, *pile, restore, [pile] { pile->all_pairs_step(); });
+        break;
+      // The instrument's cases change the pile (particles taken, moved): each run starts from it.
+      case Work::suction:
+      case Work::suction_whole_reach:
+        ms = time_runs(state, *pile, restore, [pile, quota] { pile->instrument_acts(quota, false); });
+        break;
+      case Work::contact: ms = time_runs(state, *pile, restore, [pile] { pile->instrument_acts(0, true); }); break;
+      case Work::step_with_instrument:
+        grid_ms = grid_step_ms(*pile);
+        ms = time_runs(state, *pile, restore, [pile] { pile->step_with_instrument(); });
         break;
     }
     pile->restore();
@@ -358,6 +443,15 @@ void time_particles(benchmark::State& state, BackendKind kind, int n, Work work)
       state.counters["grid_step_ms"] = grid_ms;
       state.counters["all_pairs/grid"] = ms / grid_ms;
     }
+    const bool sucks = work == Work::suction || work == Work::suction_whole_reach || work == Work::step_with_instrument;
+    if (sucks) {
+      state.counters["candidates"] = pile->reach;
+      state.counters["quota"] = quota;
+      state.counters["taken"] = double(pile->taken_by(quota));
+      state.counters["flow_particles/step"] = pile->instrument->particles_per_step();
+    }
+    if (work == Work::contact || work == Work::step_with_instrument) state.counters["in_body"] = pile->in_body;
+    if (work == Work::step_with_instrument) state.counters["step_ms"] = grid_ms;
     state.counters["ke_per_particle"] = pile->ke_per_particle;
     state.counters["max_speed_mm_s"] = pile->max_speed;
     state.counters["moving_%"] = 100.0 * pile->moving_share;
@@ -386,7 +480,9 @@ void register_case(BackendKind kind, int n, Work work) {
 
 void register_particle_benchmarks() {
   // Grouped by backend and size, so each pile is settled once.
-  const Work phases[] = {Work::emit, Work::bin, Work::collide, Work::integrate, Work::step};
+  const Work phases[] = {Work::emit,    Work::bin,     Work::collide,             Work::integrate,
+                         Work::step,    Work::suction, Work::suction_whole_reach, Work::contact,
+                         Work::step_with_instrument};
   for (const Work work : phases) register_case(BackendKind::cpu, 65536, work);
   // The CPU baseline at a size where O(N²) runs in seconds, beside the grid step at that size.
   register_case(BackendKind::cpu, 8192, Work::step);

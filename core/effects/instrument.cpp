@@ -20,8 +20,12 @@ std::optional<ToolSample> instrument_at(const Scene& scene, const std::vector<To
 
 }  // namespace
 
-Instrument::Instrument(const Scene& scene, Backend& backend, int capacity) : path_(scripted_tool(scene.tips)) {
+Instrument::Instrument(const Scene& scene, Backend& backend, int capacity)
+    : path_(scripted_tool(scene.tips)), contact_(scene.contact.has_value()) {
+  if (scene.contact)
+    args_.tip.body_mm = float(scene.contact->tip_radius_mm + scene.particles->diameter_mm / 2.0);
   if (!scene.suction) return;
+  args_.tip.reach_sq = float(scene.suction->radius_mm * scene.suction->radius_mm);
   particles_per_step_ =
       scene.suction->max_flow_mm3_per_s / particle_steps_per_s(scene) / scene.particles->particle_volume_mm3;
   scratch_ = backend.allocate(candidates_bytes(capacity));
@@ -40,34 +44,30 @@ void Instrument::act(const Scene& scene, const State& state, Backend& backend, c
                      double t0, double t1) {
   const std::optional<ToolSample> at = instrument_at(scene, path_, state, t1);
   if (!at) return;
-  const bool sucking = scene.suction && at->suction, touching = scene.contact && at->contact;
   // The quota is the whole particles the flow allows by the end of this step less those it allowed
   // before: over k steps with the suction on, floor(k · flow · dt / V) in all, taken or not.
   std::uint32_t quota = 0;
-  if (sucking) {
+  if (scene.suction && at->suction) {
     const double k = double(suction_steps_++);
     quota = std::uint32_t(std::floor((k + 1.0) * particles_per_step_) - std::floor(k * particles_per_step_));
   }
+  act_at(backend, particles, *at, instrument_at(scene, path_, state, t0), t1 - t0, quota);
+}
+
+void Instrument::act_at(Backend& backend, const ParticleArgs& particles, const ToolSample& at,
+                        const std::optional<ToolSample>& before, double dt_s, std::uint32_t quota) {
   if (particles.live_count == 0) return;
-  const std::optional<ToolSample> before = instrument_at(scene, path_, state, t0);
-  const double dt = t1 - t0;
   args_.model = particles.model;
   args_.arrays = particles.arrays;
   args_.first_live_slot = particles.first_live_slot;
   args_.live_count = particles.live_count;
   args_.quota = quota;
-  args_.tip.x_mm = float(at->x_mm);
-  args_.tip.y_mm = float(at->y_mm);
-  args_.tip.vx_mm_s = before ? float((at->x_mm - before->x_mm) / dt) : 0.0f;
-  args_.tip.vy_mm_s = before ? float((at->y_mm - before->y_mm) / dt) : 0.0f;
-  if (quota > 0) {
-    args_.tip.reach_sq = float(scene.suction->radius_mm * scene.suction->radius_mm);
-    backend.run("suction", InstrumentPhase::aspirate, args_);
-  }
-  if (touching) {
-    args_.tip.body_mm = float(scene.contact->tip_radius_mm + scene.particles->diameter_mm / 2.0);
-    backend.run("contact", InstrumentPhase::contact, args_);
-  }
+  args_.tip.x_mm = float(at.x_mm);
+  args_.tip.y_mm = float(at.y_mm);
+  args_.tip.vx_mm_s = before ? float((at.x_mm - before->x_mm) / dt_s) : 0.0f;
+  args_.tip.vy_mm_s = before ? float((at.y_mm - before->y_mm) / dt_s) : 0.0f;
+  if (quota > 0) backend.run("suction", InstrumentPhase::aspirate, args_);
+  if (contact_ && at.contact) backend.run("contact", InstrumentPhase::contact, args_);
 }
 
 std::vector<float> suction_sweep(const Scene& scene, const State& state, double t0_s, double t1_s) {

@@ -23,13 +23,22 @@ class Instrument {
   // place at t1. Particles it aspirates are counted in the arrays' fates.
   void act(const Scene& scene, const State& state, Backend& backend, const ParticleArgs& particles, double t0,
            double t1);
+  // act's launches, given the tip: where it is (`at`; in contact, it parts the blood in a scene
+  // with [contact]), where it was dt_s before (its velocity; none: at rest), and how many particles
+  // the suction may take (0: it does not suck; more only in a scene with [suction]). The benchmarks
+  // call it with a tip and a quota of their own.
+  void act_at(Backend& backend, const ParticleArgs& particles, const ToolSample& at,
+              const std::optional<ToolSample>& before, double dt_s, std::uint32_t quota);
+  // max_flow × dt / particle volume: the suction's quota a step on average (0 without suction).
+  double particles_per_step() const { return particles_per_step_; }
 
  private:
   std::vector<ToolSample> path_;      // a scripted path; empty: the stylus (State::stylus)
+  bool contact_ = false;              // the scene's tip parts the blood
   double particles_per_step_ = 0.0;   // max_flow × dt / particle volume: the suction's quota a step
   std::uint64_t suction_steps_ = 0;   // sub-steps with the suction on so far
   Buffer scratch_;                    // with suction: the candidates' keys, then their count
-  InstrumentArgs args_{};
+  InstrumentArgs args_{};             // the tip's reach and body: the scene's, set once
 };
 
 // Where the suction's tip swept over the panel between t0 and t1, as segments (x0, y0, x1, y1)
