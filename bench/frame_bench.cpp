@@ -119,7 +119,8 @@ struct FrameScene {
 
   Buffer position, age, units, film, weights, low, across, blurred, cuts, stain, tissue, tables, residue, frame_rgba,
       sweep;
-  int sweep_segments = 0;  // the suction's path over one frame: the most a swept case may take
+  std::vector<float> segments;  // the suction's path over one frame, as uploaded to `sweep`
+  double reach_mm = 0.0;        // the suction's radius
   SpreadPixel spread_work{};
   SplatArgs splat_args{};
   BlurArgs blur_args{};
@@ -235,12 +236,10 @@ struct FrameScene {
       stylus.stylus.push_back({t_s, scene.domain.width_mm / 2.0 + kSweepSpeed * t_s,
                                scene.domain.height_mm - pile_height_mm / 2.0, true, true});
     }
-    const std::vector<float> segments = suction_sweep(sucking, stylus, 0.0, frame_s);
+    segments = suction_sweep(sucking, stylus, 0.0, frame_s);
     sweep = backend->allocate(segments.size() * sizeof(float));
     backend->upload(sweep.data(), segments.data(), sweep.bytes());
-    sweep_segments = int(segments.size() / 4);
-    trail_work.sweep = sweep.as<const float>();
-    trail_work.reach_sq = float(sucking.suction->radius_mm * sucking.suction->radius_mm);
+    reach_mm = sucking.suction->radius_mm;
 
     // One frame, to see that the film is there.
     frame();
@@ -320,7 +319,8 @@ void time_frame(benchmark::State& state, BackendKind kind, const Size& size, int
       state.SkipWithError(("frame not measured: " + scene->problem).c_str());
       return;
     }
-    scene->trail_work.sweep_segments = std::min(sweep, scene->sweep_segments);
+    sweep_trail(scene->trail_work, scene->sweep.as<const float>(), scene->segments,
+                std::min(sweep, int(scene->segments.size() / 4)), scene->reach_mm);
     scene->frame();  // every buffer holds what a frame leaves in it
     for (int i = 0; i < kWarmUpRuns; ++i) scene->run(work);
     double total_ms = 0.0;

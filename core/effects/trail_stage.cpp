@@ -1,5 +1,6 @@
 #include "core/effects/trail_stage.h"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -10,6 +11,26 @@ namespace bleedsim {
 
 float trail_decay_per_frame(const TrailParams& trail, double frame_rate_hz) {
   return static_cast<float>(std::exp(-1.0 / (frame_rate_hz * trail.drying_s)));
+}
+
+void sweep_trail(TrailPixel& work, const float* on_backend, const std::vector<float>& segments, int count,
+                 double reach_mm) {
+  work.sweep = on_backend;
+  work.sweep_segments = count;
+  work.reach_sq = float(reach_mm * reach_mm);
+  double low[2] = {HUGE_VAL, HUGE_VAL}, high[2] = {-HUGE_VAL, -HUGE_VAL};
+  for (int k = 0; k < 4 * count; ++k) {
+    low[k % 2] = std::min(low[k % 2], double(segments[k]));
+    high[k % 2] = std::max(high[k % 2], double(segments[k]));
+  }
+  // Grown by the reach and a margin far beyond float32's rounding of a distance there (a few units
+  // in the last place of the coordinates): the bounds only skip pixels no segment reaches.
+  const double margin = reach_mm + 1e-3 + 1e-4 * (reach_mm + std::max({std::fabs(low[0]), std::fabs(low[1]),
+                                                                          std::fabs(high[0]), std::fabs(high[1])}));
+  for (int a = 0; a < 2; ++a) {
+    work.sweep_box[a] = float(low[a] - margin);
+    work.sweep_box[2 + a] = float(high[a] + margin);
+  }
 }
 
 TrailStage::TrailStage(const StageKind& kind, const Scene& scene, State& state, Backend& backend) : Stage(kind) {
@@ -30,9 +51,7 @@ void TrailStage::run(const Scene& scene, State& state, Backend& backend) {
     const std::size_t bytes = sweep.size() * sizeof(float);
     if (bytes > sweep_.bytes()) sweep_ = allocate(backend, 2 * bytes);
     if (bytes > 0) backend.upload(sweep_.data(), sweep.data(), bytes);
-    work_.sweep = sweep_.as<const float>();
-    work_.sweep_segments = int(sweep.size() / 4);
-    work_.reach_sq = float(scene.suction->radius_mm * scene.suction->radius_mm);
+    sweep_trail(work_, sweep_.as<const float>(), sweep, int(sweep.size() / 4), scene.suction->radius_mm);
   }
   launch(backend, work_);
 }

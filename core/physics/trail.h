@@ -22,6 +22,9 @@ struct TrailPixel {
   const float* sweep = nullptr;  // the suction's path this frame: segments (x0, y0, x1, y1), mm
   int sweep_segments = 0;
   float reach_sq = 0.0f;         // the suction's radius², mm²
+  // The path's bounds grown by more than the reach (sweep_trail): no pixel outside them is within
+  // reach, so most pixels test no segment (a stylus' frame is some 34 of them).
+  float sweep_box[4] = {0.0f, 0.0f, 0.0f, 0.0f};  // min x, min y, max x, max y, mm
 
   BLEEDSIM_HD int width() const { return grid.width; }
   BLEEDSIM_HD int height() const { return grid.height; }
@@ -33,6 +36,7 @@ struct TrailPixel {
 
   // Whether (x, y) lies within the reach of a segment: its distance² to the segment's nearest point.
   BLEEDSIM_HD bool swept(float x, float y) const {
+    if (x < sweep_box[0] || y < sweep_box[1] || x > sweep_box[2] || y > sweep_box[3]) return false;
     for (int k = 0; k < sweep_segments; ++k) {
       const float* s = sweep + 4 * k;
       const float ux = s[2] - s[0], uy = s[3] - s[1], u2 = ux * ux + uy * uy;
