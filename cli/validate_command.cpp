@@ -13,6 +13,7 @@
 #include "core/io/scenario.h"
 #include "core/haptics/trace_replay.h"
 #include "core/runtime/message_text.h"
+#include "core/runtime/vessels.h"
 
 namespace bleedsim::cli {
 namespace {
@@ -63,7 +64,9 @@ void describe_particles(const Scene& scene, std::int64_t stylus_cuts) {
                 m.film_mm, drop.volume_mm3, drop.radius_mm);
   // The ring overwrites live blood when more can be alive at once than it has slots: a cut has at
   // most what it bleeds in its first lifetime alive (its flow only falls).
-  std::vector<Cut> cuts = scene.cuts;
+  // A scripted cut bleeds by the vessels along its wound; a stylus' cut is counted at its full flow.
+  std::vector<Cut> cuts;
+  for (const Cut& cut : scene.cuts) cuts.push_back(with_vessels(scene, cut));
   for (std::int64_t i = 0; i < stylus_cuts; ++i) {
     cuts.push_back(scene.cut_at(0, 0, 0));
     cuts.back().wound_mm = scene.haptics->cut_spacing_mm;
@@ -81,8 +84,15 @@ void describe_particles(const Scene& scene, std::int64_t stylus_cuts) {
 
 // Where and how hard the wounds bleed, and the instrument (docs/bleeding.md).
 void describe_bleeding(const Scene& scene) {
-  if (scene.vessels)
-    std::printf("  vessels    each wound's flow times the map's mean along it; map %s\n", scene.vessels->map.c_str());
+  if (scene.vessels) {
+    std::printf("  vessels    each wound's flow times the map's mean along it; map %s", scene.vessels->map.c_str());
+    if (!scene.cuts.empty()) std::printf("; the cuts' means");
+    for (const Cut& cut : scene.cuts) {
+      const Cut bleeding = with_vessels(scene, cut);
+      std::printf(" %.3g%s", bleeding.vessel_density, bleeding.arterial ? " (arterial)" : "");
+    }
+    std::printf("\n");
+  }
   if (scene.pulse) {
     const PulseParams& q = *scene.pulse;
     std::printf("  pulse      %g beats a minute, w(t) = 1 + %g sin(2πft) + %g sin(4πft); arterial: cuts marked so%s\n",
@@ -112,7 +122,9 @@ void describe_bleeding(const Scene& scene) {
 }  // namespace
 
 int validate_command(const std::string& scenario) {
-  const Scenario file = load_scenario(scenario, ReadTissue::header_only);
+  // The tissue is not drawn, but a vessel map is read: the cuts' bleeding depends on it.
+  Scenario file = load_scenario(scenario, ReadTissue::header_only);
+  if (file.scene.vessels) file = load_scenario(scenario);
   const Scene& scene = file.scene;
   const OutputSpec& out = file.output;
   const Domain& d = scene.domain;

@@ -32,7 +32,7 @@ constexpr std::uintmax_t kMaxScenarioBytes = 16u << 20;
 
 // What reading a scenario does with its tissue, once the run is known to fit in memory: draws it
 // (a run needs it), or only reads a texture's header (bleedsim validate, which allocates nothing
-// the size of the panel; Scene::tissue stays empty).
+// the size of the panel; Scene::tissue and Scene::vessel_density stay empty).
 enum class ReadTissue { draw, header_only };
 
 // Reads, validates and resolves a scenario file: every key checked for type and range (each

@@ -182,8 +182,15 @@ TEST(Validate, DescribesTheBleedingAndTheInstrument) {
   EXPECT_NE(stylus.output.find("in contact with a button of 0x2 held\n"), std::string::npos) << stylus.output;
   const CliResult vessels = run_cli("validate '" + scenario("vessels-pulse.toml") + "'");
   ASSERT_EQ(vessels.exit_code, 0) << vessels.output;
-  EXPECT_NE(vessels.output.find("vessels    each wound's flow times the map's mean along it; map procedural\n"),
-            std::string::npos) << vessels.output;
+  // Its cuts' mean densities, the first marked arterial in the file, the last between vessels (the
+  // map is 0 along its wound).
+  const std::string means = "vessels    each wound's flow times the map's mean along it; map procedural; the cuts' means ";
+  const std::size_t at = vessels.output.find(means);
+  ASSERT_NE(at, std::string::npos) << vessels.output;
+  const std::string line = vessels.output.substr(at, vessels.output.find('\n', at) - at);
+  EXPECT_EQ(line.find(means + "0."), 0u) << line;
+  EXPECT_NE(line.find(" (arterial) "), std::string::npos) << line;
+  EXPECT_EQ(line.substr(line.size() - 2), " 0") << line;
   EXPECT_NE(vessels.output.find("pulse      72 beats a minute, w(t) = 1 + 0.6 sin(2πft) + 0.3 sin(4πft); arterial: cuts "
                                 "marked so, and wounds of mean vessel density ≥ 0.6\n"),
             std::string::npos) << vessels.output;
