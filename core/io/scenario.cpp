@@ -243,12 +243,13 @@ class Reader {
 };
 
 // Refused at its header, before its keys are read: a table whose stage reads a field that no stage
-// of this scene writes (a [blur] without [particles]).
+// of this scene writes (a [blur] or a [trail] without [particles]).
 void refuse_unwired_stages(Reader& r, const toml::table& root, Scenario& s) {
   Scene declared = s.scene;
   if (root.contains("spread")) declared.spread.emplace();
   if (root.contains("particles")) declared.particles.emplace();
   if (root.contains("blur")) declared.blur.emplace();
+  if (root.contains("trail")) declared.trail.emplace();
   if (const ParamProblem problem = Pipeline::wiring_problem(declared)) {
     r.table(root, problem.key);
     throw InputError(s.place_of(problem.key), problem.key, problem.message);

@@ -535,15 +535,23 @@ TEST(ScenarioBlur, EachKeyOutOfRangeIsRefusedAtItsLine) {
                          "must be greater than 0 and at most 64 (got 0)"));
 }
 
+// The film's stages (the blur, the trail) read splat/thickness: without [particles] their table is
+// refused at its header (a scenario fuzzer's find, for [trail]: it once escaped as a failure
+// without a place).
 TEST(ScenarioBlur, WithoutParticlesIsRefusedAtItsHeader) {
-  const std::string gist = "the blur stage reads splat/thickness, which the splat stage writes; a scene calls for "
-                           "that stage with a [particles] table, and this one has none";
-  // kBase declares the spread but no particles.
-  EXPECT_TRUE(refused_at(kBase + "[blur]\n", kEnd, "blur", gist));
-  // At the header even when the table sets keys, good or bad.
-  EXPECT_TRUE(refused_at(kBase + "[blur]\nradius_px = 2\n", kEnd, "blur", gist));
-  EXPECT_TRUE(refused_at(kBase + "[blur]\nsigma_px = 0\n", kEnd, "blur", gist));
-  EXPECT_EQ(refused_column(kBase + "[blur]\n"), 1);
+  for (const std::string table : {"blur", "trail"}) {
+    const std::string gist = "the " + table + " stage reads splat/thickness, which the splat stage writes; a scene "
+                             "calls for that stage with a [particles] table, and this one has none";
+    const std::string header = "[" + table + "]\n";
+    // kBase declares the spread but no particles.
+    EXPECT_TRUE(refused_at(kBase + header, kEnd, table, gist));
+    // At the header even when the table sets keys, good or bad.
+    EXPECT_TRUE(refused_at(kBase + header + (table == "blur" ? "radius_px = 2\n" : "residue = 0.2\n"), kEnd, table,
+                           gist));
+    EXPECT_TRUE(refused_at(kBase + header + (table == "blur" ? "sigma_px = 0\n" : "drying_s = 0\n"), kEnd, table,
+                           gist));
+    EXPECT_EQ(refused_column(kBase + header), 1);
+  }
 }
 
 TEST(ScenarioBlur, MayBeWrittenBeforeItsParticles) {
