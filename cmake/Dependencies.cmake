@@ -7,6 +7,7 @@ find_package(CLI11 CONFIG REQUIRED)
 # Eigen (header-only) for the haptics' host-side geometry.
 find_package(Eigen3 3.3 REQUIRED NO_MODULE)
 find_path(STB_INCLUDE_DIR stb/stb_image_write.h REQUIRED)
+find_path(TINYOBJLOADER_INCLUDE_DIR tiny_obj_loader.h REQUIRED)   # tissue meshes (OBJ), header-only use
 
 # HDF5 (C API). For the GPU machine, which has no HDF5, link the static archives Debian ships.
 if(BLEEDSIM_STATIC)
