@@ -1,4 +1,4 @@
-// The tissue mesh reader (core/io/tissue_mesh.h: tinyobjloader, then the checks) on any bytes: it
+// The tissue mesh reader (core/io/mesh_obj.h: tinyobjloader, then the checks) on any bytes: it
 // must refuse them with an InputError or give a mesh whose every index is in range, never crash,
 // read out of bounds or hold more triangles than its budget.
 #include <cstddef>
@@ -6,7 +6,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "core/io/tissue_mesh.h"
+#include "core/io/mesh_obj.h"
 #include "core/runtime/input_error.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

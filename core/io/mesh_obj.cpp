@@ -1,4 +1,4 @@
-#include "core/io/tissue_mesh.h"
+#include "core/io/mesh_obj.h"
 
 #include <algorithm>
 #include <cctype>
@@ -65,13 +65,6 @@ std::string geometry_only(const std::string& text) {
 }
 
 }  // namespace
-
-double TissueMesh::area_mm2() const {
-  double sum = 0.0;
-  for (const Triangle& t : triangles)
-    sum += 0.5 * twice_area(positions[t.corner[0]], positions[t.corner[1]], positions[t.corner[2]]);
-  return sum;
-}
 
 TissueMesh load_tissue_mesh(const std::string& path, const MeshBudget& budget, const std::string& key) {
   return parse_tissue_mesh(read_text_file(path, "mesh", budget.file_bytes), path, budget, key);

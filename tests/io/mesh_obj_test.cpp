@@ -1,4 +1,4 @@
-// Tissue meshes from OBJ files (core/io/tissue_mesh.h): a parametric patch read back exactly, its
+// Tissue meshes from OBJ files (core/io/mesh_obj.h): a parametric patch read back exactly, its
 // area the faceted surface's closed form; and every kind of bad mesh refused naming the file, the
 // face where there is one, and the problem.
 #include <gtest/gtest.h>
@@ -9,7 +9,7 @@
 #include <sstream>
 #include <string>
 
-#include "core/io/tissue_mesh.h"
+#include "core/io/mesh_obj.h"
 #include "core/runtime/input_error.h"
 #include "tests/test_paths.h"
 

@@ -1,0 +1,25 @@
+#pragma once
+// A tissue mesh (docs/mesh.md): triangles in millimetres with a texture coordinate at every corner,
+// the texture being where the bleeding lives. core/io/mesh_obj.h reads one from an OBJ file and
+// checks it; this is what the simulation sees of it.
+#include <array>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace bleedsim {
+
+struct TissueMesh {
+  struct Triangle {
+    std::array<int, 3> corner;  // into positions
+    std::array<int, 3> uv;      // into uvs
+  };
+  std::vector<Eigen::Vector3d> positions;  // mm
+  std::vector<Eigen::Vector2d> uvs;        // the texture's coordinates, 0 … 1 across it
+  std::vector<Triangle> triangles;
+
+  // The surface's area, Σ ½ |(b − a) × (c − a)| (mm²).
+  double area_mm2() const;
+};
+
+}  // namespace bleedsim
