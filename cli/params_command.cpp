@@ -37,8 +37,10 @@ std::string json_value(const ParamView& p) {
   struct Json {
     std::string operator()(std::monostate) const { return "null"; }
     std::string operator()(double v) const { return format_number(v); }
-    std::string operator()(const std::pair<double, double>& v) const {
-      return "[" + format_number(v.first) + ", " + format_number(v.second) + "]";
+    std::string operator()(const std::vector<double>& v) const {
+      std::string out;
+      for (double c : v) out += (out.empty() ? "[" : ", ") + format_number(c);
+      return out + "]";
     }
     std::string operator()(const std::string& v) const { return json_string(v); }
     std::string operator()(bool v) const { return v ? "true" : "false"; }
@@ -52,7 +54,8 @@ std::string json_value(const ParamView& p) {
 }
 
 bool numeric(ParamType type) {
-  return type == ParamType::integer || type == ParamType::number || type == ParamType::vector;
+  return type == ParamType::integer || type == ParamType::number || type == ParamType::vector ||
+         type == ParamType::vector3;
 }
 
 void print_json(const std::vector<TableView>& tables) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "core/effects/surface_stage.h"
 #include "core/runtime/count.h"
 
 namespace bleedsim {
@@ -44,6 +45,12 @@ int fewest_stable_substeps(double frame_rate_hz, double limit_s) {
   int n = std::max(1, at_least.to<int>());
   while (1.0 / (frame_rate_hz * n) >= limit_s) ++n;  // the floor can land on the limit
   return n;
+}
+
+// Surface mm per panel mm at least: 1 on the flat panel; on a mesh its least stretch, by which the
+// panel's cells and margins grow so that they hold the surface's range and radius.
+double least_stretch(const Scene& scene) {
+  return scene.mesh ? panel_stretch(scene.mesh->mesh(), texture_panel(scene.domain)).least : 1.0;
 }
 
 }  // namespace
@@ -103,7 +110,7 @@ ParticleLifetime particle_lifetime(const Scene& scene) {
 }
 
 Count particle_cell_count(const Scene& scene) {
-  const double cell = particle_mechanics(*scene.particles, scene.domain, scene.frame_rate_hz).cell_mm;
+  const double cell = particle_mechanics(*scene.particles, scene.domain, scene.frame_rate_hz).cell_mm / least_stretch(scene);
   return particle_grid_cells(cell, scene.domain.width_mm, scene.domain.height_mm);
 }
 
@@ -111,7 +118,8 @@ ParticleModel make_particle_model(const Scene& scene) {
   const ParticleParams& p = *scene.particles;
   const ParticleMechanics mech = particle_mechanics(p, scene.domain, scene.frame_rate_hz);
   const double dt = mech.dt_s;
-  const double r = p.diameter_mm / 2.0;
+  const double r = p.diameter_mm / 2.0, stretch = least_stretch(scene);
+  const double margin = std::min(r / stretch, std::min(scene.domain.width_mm, scene.domain.height_mm) / 2.0);
   ParticleModel m{};
   m.radius_mm = float(r);
   m.diameter_mm = float(p.diameter_mm);
@@ -135,13 +143,14 @@ ParticleModel make_particle_model(const Scene& scene) {
   m.drag_divisor = float(1.0 + p.drag_per_s * dt);
   m.max_speed = float(p.max_speed_mm_s);
   m.max_speed_sq = m.max_speed * m.max_speed;
-  m.min_x = float(r);
-  m.max_x = float(scene.domain.width_mm - r);
-  m.min_y = float(r);
-  m.max_y = float(scene.domain.height_mm - r);
-  m.cell_mm = float(mech.cell_mm);
-  m.cells_x = cells_along(scene.domain.width_mm, mech.cell_mm).to<int>();
-  m.cells_y = cells_along(scene.domain.height_mm, mech.cell_mm).to<int>();
+  m.min_x = float(margin);
+  m.max_x = float(scene.domain.width_mm - margin);
+  m.min_y = float(margin);
+  m.max_y = float(scene.domain.height_mm - margin);
+  const double cell_mm = mech.cell_mm / stretch;
+  m.cell_mm = float(cell_mm);
+  m.cells_x = cells_along(scene.domain.width_mm, cell_mm).to<int>();
+  m.cells_y = cells_along(scene.domain.height_mm, cell_mm).to<int>();
   m.key_bits = bits_for(std::uint32_t(m.cells_x) * std::uint32_t(m.cells_y));
   m.lifetime = particle_lifetime(scene);
   m.jitter_mm = float(p.jitter_mm);

@@ -5,6 +5,7 @@
 
 #include "core/effects/particle_buffers.h"
 #include "core/effects/particle_model.h"
+#include "core/effects/surface_stage.h"
 
 namespace bleedsim {
 namespace {
@@ -32,6 +33,7 @@ ParticleStage::ParticleStage(const StageKind& kind, const Scene& scene, State& s
       substeps_(particle_mechanics(*scene.particles, scene.domain, scene.frame_rate_hz).substeps) {
   const int capacity = scene.particles->capacity;
   args_.model = make_particle_model(scene);
+  args_.model.surface = surface_map(scene, state);
   const ParticleModel& model = args_.model;
   ParticleArrays& a = args_.arrays;
   a.capacity = capacity;

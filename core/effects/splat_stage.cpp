@@ -1,6 +1,7 @@
 #include "core/effects/splat_stage.h"
 
 #include "core/effects/particle_model.h"
+#include "core/effects/surface_stage.h"
 #include "core/physics/splat.h"
 
 namespace bleedsim {
@@ -34,6 +35,7 @@ SplatStage::SplatStage(const StageKind& kind, const Scene& scene, State& state, 
   args_.grid = scene.domain.grid();
   args_.units = units_.as<std::uint64_t>();
   args_.thickness_mm = thickness.data.as<float>();
+  args_.surface = surface_map(scene, state);
 }
 
 MemoryParts SplatStage::memory_for(const Scene& scene) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "core/effects/surface_stage.h"
 #include "core/physics/pixel_kernels.h"
 
 namespace bleedsim {
@@ -37,7 +38,7 @@ void SpreadStage::run(const Scene& scene, State& state, Backend& backend) {
   if (needed > cuts_.bytes()) cuts_ = allocate(backend, 2 * needed);
   if (needed > 0) backend.upload(cuts_.data(), active_.data(), needed);
   launch(backend, SpreadPixel{cuts_.as<const SpreadCut>(), static_cast<int>(active_.size()), scene.domain.grid(),
-                              stain_.data.as<float>()});
+                              stain_.data.as<float>(), surface_map(scene, state)});
 }
 
 }  // namespace bleedsim

@@ -5,6 +5,7 @@
 #include "core/effects/particle_stage.h"
 #include "core/effects/splat_stage.h"
 #include "core/effects/spread_stage.h"
+#include "core/effects/surface_stage.h"
 #include "core/effects/trail_stage.h"
 
 namespace bleedsim {
@@ -33,6 +34,12 @@ FieldLayout elements(const char* name, ElementType type, int channels, bool on_r
 
 std::vector<std::string> no_fields(const Scene&) { return {}; }
 
+// An image field written to files only when the scene lists it: constants of the run.
+FieldLayout on_request(FieldLayout field) {
+  field.on_request = true;
+  return field;
+}
+
 template <class S>
 std::unique_ptr<Stage> make(const StageKind& kind, const Scene& scene, State& state, Backend& backend) {
   return std::make_unique<S>(kind, scene, state, backend);
@@ -48,10 +55,17 @@ const FieldLayout* StageKind::written(const std::string& field) const {
 
 const std::vector<StageKind>& stage_kinds() {
   static const std::vector<StageKind> kinds = {
+      {"surface", "tissue", [](const Scene& s) { return s.mesh != nullptr; },
+       {on_request(image("surface/frame", ElementType::f32, kSurfaceFrameChannels, "mm/mm",
+                         "the tissue mesh's map from panel to surface mm at each texel, (a, b, c): a panel step "
+                         "(dx, dy) goes (a dx + b dy, c dy) on the surface; and 1 where a triangle covers the texel")),
+        on_request(image("surface/gravity", ElementType::f32, kSurfaceGravityChannels, "mm/s²",
+                         "gravity along the tissue mesh's surface at each texel, in the frame of surface/frame"))},
+       no_fields, SurfaceStage::memory_for, make<SurfaceStage>},
       {"spread", "spread", [](const Scene& s) { return s.spread.has_value(); },
        {image("spread/stain", ElementType::f32, 1, "1",
               "radial-spread stain: the share of a full stain (report 2.2.1), drawn as stain_depth_mm of blood")},
-       no_fields, SpreadStage::memory_for, make<SpreadStage>},
+       surface_fields, SpreadStage::memory_for, make<SpreadStage>},
       {"particles", "particles", [](const Scene& s) { return s.particles.has_value(); },
        {elements("particles/position", ElementType::f32, 2, true, "mm", "centre of each ring-buffer slot's particle"),
         elements("particles/velocity", ElementType::f32, 2, true, "mm/s", "velocity of each slot's particle"),
@@ -61,11 +75,15 @@ const std::vector<StageKind>& stage_kinds() {
         elements("particles/accounting", ElementType::u64, 1, false, "particles",
                  "emitted, alive, expired, overwritten, and with [suction] aspirated: emitted = alive + expired + "
                  "overwritten (+ aspirated)")},
-       no_fields, ParticleStage::memory_for, make<ParticleStage>},
+       surface_fields, ParticleStage::memory_for, make<ParticleStage>},
       {"splat", "particles", [](const Scene& s) { return s.particles.has_value(); },
        {image("splat/thickness", ElementType::f32, 1, "mm",
               "thickness of the film of blood the particles make: each one's volume spread over its splat radius")},
-       [](const Scene&) { return std::vector<std::string>{"particles/position", "particles/age"}; },
+       [](const Scene& s) {
+         std::vector<std::string> reads{"particles/position", "particles/age"};
+         for (const std::string& field : surface_fields(s)) reads.push_back(field);
+         return reads;
+       },
        SplatStage::memory_for, make<SplatStage>},
       {"blur", "blur", [](const Scene& s) { return s.blur.has_value(); },
        {image("blur/thickness", ElementType::f32, 1, "mm",

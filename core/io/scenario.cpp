@@ -3,6 +3,7 @@
 #include "core/io/toml.h"
 
 #include <algorithm>
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -11,6 +12,7 @@
 
 #include "core/effects/pipeline.h"
 #include "core/effects/stage_kinds.h"
+#include "core/io/mesh_obj.h"
 #include "core/io/text_file.h"
 #include "core/io/tissue_png.h"
 #include "core/io/trace_csv.h"
@@ -23,19 +25,44 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// [tissue]: the texture a file names, or none for the procedural mucosa.
+// [tissue]: the texture a file names, or none for the procedural mucosa; and the mesh it covers,
+// with where the mesh sits in the device frame, or none for the flat panel.
 struct TissueFile {
   std::string texture;
+  std::string mesh;
+  MeshPlacement placement;
 };
 
+// The placement's keys say where a mesh goes: without one they say nothing, and are refused.
+ParamProblem placement_needs_a_mesh(TissueFile& tissue, const Written& written, const Scene&) {
+  if (!tissue.mesh.empty()) return {};
+  for (const char* key : {"mesh_position_mm", "mesh_rotation_deg", "mesh_scale"})
+    if (written.has(key)) return {key, "places a tissue mesh, and this scene names none (tissue.mesh)"};
+  return {};
+}
+
 const ParamTable<TissueFile>& tissue_table() {
+  using T = ParamType;
+  using P = TissueFile;
   static const ParamTable<TissueFile> table{
       "tissue",
-      "a PNG texture under the blood; leave it out for a procedural mucosa",
-      {{"texture", ParamType::text, BLEEDSIM_MEMBER(TissueFile, texture), "", {},
-        "a PNG file, relative to the scenario file; resampled to the panel's pixels",
-        "none: a procedural mucosa"}},
-      {}};
+      "a PNG texture under the blood, and the mesh it covers; leave it out for a procedural mucosa on the flat panel",
+      {{"texture", T::text, BLEEDSIM_MEMBER(P, texture), "", {},
+        "a PNG file, relative to the scenario file; resampled to the panel's pixels", "none: a procedural mucosa"},
+       {"mesh", T::text, BLEEDSIM_MEMBER(P, mesh), "", {},
+        "a tissue mesh (OBJ, docs/mesh.md), relative to the scenario file: the panel is its texture, and blood "
+        "runs on its surface",
+        "none: the flat panel"},
+       {"mesh_position_mm", T::vector3,
+        BLEEDSIM_VECTOR3(P, placement.position_mm.x(), placement.position_mm.y(), placement.position_mm.z()), "mm",
+        {-1e4, 1e4}, "where the mesh's origin sits in the device frame (x right, y up, z towards the user)"},
+       {"mesh_rotation_deg", T::vector3,
+        BLEEDSIM_VECTOR3(P, placement.rotation_deg.x(), placement.rotation_deg.y(), placement.rotation_deg.z()), "°",
+        {-360, 360}, "the mesh turned about the device's x, then y, then z axis before it is moved"},
+       {"mesh_scale", T::number, BLEEDSIM_MEMBER(P, placement.scale), "", {0, 1e3, true},
+        "the mesh's units in mm: its points are multiplied by this before they are turned"}},
+      {},
+      placement_needs_a_mesh};
   return table;
 }
 
@@ -58,6 +85,8 @@ ParamProblem resolve_output(OutputSpec& out, const Written& written, const Scene
           if (field.name != "frame") all += (all.empty() ? "" : ", ") + field.name;
       return {key, "unknown field '" + name + "' (known: " + all + "; the frame is always written)"};
     }
+    if (!writer->wanted(scene) && std::string(writer->table) == "tissue")
+      return {key, "'" + name + "' needs a tissue mesh (tissue.mesh), which this scene does not have"};
     if (!writer->wanted(scene))
       return {key, "'" + name + "' needs the [" + writer->table + "] effect, which this scene does not declare"};
     if (std::find(out.fields.begin(), out.fields.begin() + std::ptrdiff_t(i), name) != out.fields.begin() + std::ptrdiff_t(i))
@@ -161,9 +190,11 @@ class Reader {
       if (param.type == ParamType::text) written.texts[param.key] = text(node, key);
       else written.numbers[param.key] = in_range(number(node, key), node, key, param);
     } else if constexpr (std::is_same_v<Field, VectorRef (*)(P&)>) {
-      const auto [x, y] = vector(node, key, param);
-      field(params).x = x;
-      field(params).y = y;
+      const std::array<double, 3> v = vector(node, key, param);
+      const VectorRef to = field(params);
+      to.x = v[0];
+      to.y = v[1];
+      if (to.z) *to.z = v[2];
     } else if constexpr (std::is_same_v<Field, double& (*)(P&)>) {
       field(params) = in_range(number(node, key), node, key, param);
     } else if constexpr (std::is_same_v<Field, std::string& (*)(P&)>) {
@@ -202,27 +233,30 @@ class Reader {
     return *value;
   }
 
-  // [x, y]: two numbers, each within the parameter's range.
+  // [x, y] or [x, y, z]: two or three numbers, each within the parameter's range (a pair's third is 0).
   template <class P>
-  std::pair<double, double> vector(const toml::node& node, const std::string& key, const Param<P>& param) {
-    const toml::array* pair = node.as_array();
-    if (!pair || pair->size() != 2) {
-      const std::string got = !pair           ? kind_of(node)
-                              : pair->empty() ? "an empty array"
-                              : "an array of " + std::to_string(pair->size()) +
-                                    (pair->size() == 1 ? " element" : " elements");
-      fail(node.source(), key, "expected [x, y], two numbers, got " + got);
+  std::array<double, 3> vector(const toml::node& node, const std::string& key, const Param<P>& param) {
+    const bool three = param.type == ParamType::vector3;
+    const std::size_t size = three ? 3 : 2;
+    const toml::array* array = node.as_array();
+    if (!array || array->size() != size) {
+      const std::string got = !array           ? kind_of(node)
+                              : array->empty() ? "an empty array"
+                              : "an array of " + std::to_string(array->size()) +
+                                    (array->size() == 1 ? " element" : " elements");
+      fail(node.source(), key, three ? "expected [x, y, z], three numbers, got " + got
+                                     : "expected [x, y], two numbers, got " + got);
     }
-    const auto component = [&](std::size_t i, const char* axis) {
-      const toml::node& v = *pair->get(i);
-      s_.places[key + "." + axis] = place(v.source());
-      return in_range(number(v, key + "." + axis), v, key + "." + axis, param);
-    };
-    // x before y, so a pair with two bad numbers is refused at the first (function arguments have
-    // no order of evaluation).
-    const double x = component(0, "x");
-    const double y = component(1, "y");
-    return {x, y};
+    // In order, so an array with several bad numbers is refused at the first.
+    std::array<double, 3> v{};
+    const char* axes[] = {"x", "y", "z"};
+    for (std::size_t i = 0; i < size; ++i) {
+      const toml::node& c = *array->get(i);
+      const std::string at = key + "." + axes[i];
+      s_.places[at] = place(c.source());
+      v[i] = in_range(number(c, at), c, at, param);
+    }
+    return v;
   }
 
   std::vector<std::string> names(const toml::node& node, const std::string& key) {
@@ -319,20 +353,54 @@ void read_haptics(Reader& r, const toml::table& root, Scenario& s) {
   load_named_trace(written, s);
 }
 
+// A tissue mesh places the tissue in the device frame itself, so the flat panel's placement under
+// the stylus is not the scene's to give; and the instrument's tip does not yet act on a mesh.
+void refuse_what_a_mesh_replaces(const Scenario& s) {
+  for (const char* key : {"haptics.surface_z_mm", "haptics.panel_origin_mm", "haptics.scale"})
+    if (s.places.count(key))
+      throw InputError(s.place_of(key), key,
+                       "places the flat panel under the stylus; with tissue.mesh the mesh's placement "
+                       "(tissue.mesh_position_mm, mesh_rotation_deg, mesh_scale) says where the tissue is");
+  for (const char* table : {"suction", "contact"})
+    if (s.places.count(table))
+      throw InputError(s.place_of(table), table,
+                       std::string("the instrument's ") + table + " acts on the flat panel only; a scene with "
+                       "tissue.mesh cannot have it yet");
+}
+
 // The tissue comes last: it is the one large allocation, made only once the scene is known to fit:
 // the tissue, a texture's decoding and every stage's memory, each part under the key that sets it.
-void read_tissue(Reader& r, const toml::table& root, Scenario& s, ReadTissue how) {
+// A file named in the scenario, relative to the scenario file.
+std::string beside(const Scenario& s, const std::string& name) {
+  fs::path file = name;
+  if (file.is_relative()) file = fs::path(s.path).parent_path() / file;
+  return file.lexically_normal().string();
+}
+
+// The [tissue] table, and its mesh, which the output's fields and the stages' memory depend on (the
+// mesh reader keeps to its own budget).
+TissueFile read_tissue_table(Reader& r, const toml::table& root, Scenario& s) {
   TissueFile tissue;
   r.read(r.table(root, "tissue"), tissue_table(), tissue, s.scene, "tissue");
+  if (!tissue.mesh.empty()) {
+    refuse_what_a_mesh_replaces(s);
+    s.scene.mesh_source = beside(s, tissue.mesh);
+    std::error_code error;
+    if (!fs::is_regular_file(s.scene.mesh_source, error))
+      throw InputError(s.place_of("tissue.mesh"), "tissue.mesh",
+                       "cannot read " + s.scene.mesh_source + ": " +
+                           (fs::exists(s.scene.mesh_source, error) ? "not a regular file" : "no such file"));
+    s.scene.mesh = std::make_shared<const MeshSurface>(placed(load_tissue_mesh(s.scene.mesh_source), tissue.placement));
+  }
+  return tissue;
+}
+
+void read_tissue(const TissueFile& tissue, Scenario& s, ReadTissue how) {
   Scene& scene = s.scene;
+  const auto beside_the_scenario = [&](const std::string& name) { return beside(s, name); };
   MemoryParts parts = Pipeline::memory(scene);
   parts.push_back(scene.domain.memory(4));
   const SourcePlace texture_place = s.place_of("tissue.texture"), map_place = s.place_of("vessels.map");
-  const auto beside_the_scenario = [&](const std::string& name) {
-    fs::path file = name;
-    if (file.is_relative()) file = fs::path(s.path).parent_path() / file;
-    return file.lexically_normal().string();
-  };
   const bool procedural_vessels = scene.vessels && scene.vessels->map == "procedural";
   if (procedural_vessels && !tissue.texture.empty())
     throw s.placed(InputError(SourcePlace{}, "vessels.map",
@@ -440,8 +508,9 @@ Scenario parse_scenario(const std::string& text, const std::string& path, ReadTi
   read_effect(r, root, suction_table(), s.scene.suction, s.scene);
   if (const ParamProblem problem = tip_path_problem(s.scene))
     throw InputError(s.place_of(problem.key), problem.key, problem.message);
+  const TissueFile tissue_file = read_tissue_table(r, root, s);
   r.read(r.table(root, "output"), output_table(), s.output, s.scene, "output");
-  read_tissue(r, root, s, tissue);
+  read_tissue(tissue_file, s, tissue);
   return s;
 }
 

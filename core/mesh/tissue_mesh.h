@@ -22,4 +22,16 @@ struct TissueMesh {
   double area_mm2() const;
 };
 
+// Where a mesh sits in the device frame: its points scaled, turned about the device's x, then y,
+// then z axis (R = R_z · R_y · R_x, angles in degrees), then moved by `position_mm`.
+struct MeshPlacement {
+  Eigen::Vector3d position_mm = Eigen::Vector3d::Zero();
+  Eigen::Vector3d rotation_deg = Eigen::Vector3d::Zero();
+  double scale = 1.0;
+};
+
+// The mesh as placed: every position p becomes position + scale · R · p (uvs unchanged). Exact for
+// the identity rotation and a unit scale: a flat panel placed so lands on the same numbers.
+TissueMesh placed(TissueMesh mesh, const MeshPlacement& placement);
+
 }  // namespace bleedsim

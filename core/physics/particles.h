@@ -13,6 +13,10 @@
 //   integrate  gravity, contacts and drag (semi-implicit Euler), the mucosa's grip, panel bounds, age
 // Once per frame the splat stage (core/physics/splat.h) turns the live particles into a film of blood.
 //
+// On a tissue mesh (core/physics/surface.h) the same model runs in surface millimetres: velocities,
+// forces and gravity are the surface's, in each texel's frame, positions the panel's; a texel off the
+// surface is a wall.
+//
 // Every update reads the old state and writes a new one (collide reads sorted copies, integrate
 // touches only its own slot), sums run in a fixed order, and there are no float atomics: the CPU
 // reference and the CUDA kernels give the same bits.
@@ -23,6 +27,7 @@
 #include "core/physics/counter_hash.h"
 #include "core/physics/hd.h"
 #include "core/physics/pixel_grid.h"
+#include "core/physics/surface.h"
 
 namespace bleedsim {
 
@@ -51,15 +56,15 @@ struct ParticleModel {
   float edge_company;      // ... and so is one with fewer neighbours than this (a drop of a few)
   float birth_steps;       // a pair with a particle this new has no force: its overlap is shifted away ...
   float birth_speed;       // mm/s: ... at no more than this
-  float gravity_x;         // mm/s², along the panel (y points down)
+  float gravity_x;         // mm/s², along the panel (y points down); on a mesh, the surface's map says
   float gravity_y;
   float dt_s;              // one sub-step
   float drag_divisor;      // 1 + drag·dt: drag taken implicitly, so it never destabilises
   float max_speed;         // mm/s
   float max_speed_sq;
-  float min_x, max_x;      // where a centre may be: the panel less one radius
+  float min_x, max_x;      // where a centre may be: the panel less one radius (in panel mm)
   float min_y, max_y;
-  float cell_mm;           // grid cell edge, ≥ the range
+  float cell_mm;           // grid cell edge in panel mm, ≥ the range on the surface
   int cells_x;
   int cells_y;
   int key_bits;            // bits of a cell key; the sentinel `cells_x·cells_y` marks no particle
@@ -69,6 +74,7 @@ struct ParticleModel {
   float velocity_y;
   float velocity_jitter;   // ... ± this in x and y
   std::uint64_t seed;
+  SurfaceMap surface;      // the tissue mesh's maps; empty on the flat panel
 };
 
 // A slot whose age is at least the lifetime holds no particle; a slot never written holds this.
@@ -193,8 +199,16 @@ BLEEDSIM_HD inline void emit_particle(const ParticleArgs& a, int t) {
   const auto jitter = [&](std::uint32_t stream) {
     return signed_unit(counter_hash(m.seed, id, a.step, stream));
   };
-  a.arrays.position[2 * slot] = reflect_inside(from.x_mm + m.jitter_mm * jitter(0), m.min_x, m.max_x);
-  a.arrays.position[2 * slot + 1] = reflect_inside(from.y_mm + m.jitter_mm * jitter(1), m.min_y, m.max_y);
+  float jx = m.jitter_mm * jitter(0), jy = m.jitter_mm * jitter(1);
+  // On a mesh the jitter is on the surface; one that lands off it falls back to the cut.
+  if (curved(m.surface)) to_panel(frame_at(m.surface, from.x_mm, from.y_mm), jx, jy, &jx, &jy);
+  float x = reflect_inside(from.x_mm + jx, m.min_x, m.max_x), y = reflect_inside(from.y_mm + jy, m.min_y, m.max_y);
+  if (curved(m.surface) && !on_surface(m.surface, x, y)) {
+    x = clamp_float(from.x_mm, m.min_x, m.max_x);
+    y = clamp_float(from.y_mm, m.min_y, m.max_y);
+  }
+  a.arrays.position[2 * slot] = x;
+  a.arrays.position[2 * slot + 1] = y;
   a.arrays.velocity[2 * slot] = m.velocity_x * from.speed_scale + m.velocity_jitter * jitter(2);
   a.arrays.velocity[2 * slot + 1] = m.velocity_y * from.speed_scale + m.velocity_jitter * jitter(3);
   a.arrays.age[slot] = 0;
@@ -278,8 +292,8 @@ struct PairSums {
   float company = 0.0f;        // the weights
 };
 
-// The pair force on the particle at p from the one at q (per unit mass), along their line of
-// centres. Overlapping, a spring pushes them apart and a dashpot resists their approach, together
+// The pair force on a particle from the one at offset (dx, dy) = p − q from it (per unit mass, on the
+// surface), along their line of centres. Overlapping, a spring pushes them apart and a dashpot resists their approach, together
 // never pulling (a dashpot that pulled separating particles would be a tension the blood does not
 // have); within the range, cohesion pulls. The same arithmetic from either side gives equal and
 // opposite forces, bit for bit.
@@ -289,11 +303,9 @@ struct PairSums {
 // velocity. In the second, its force grows from nothing to whole, so the small overlaps left (a new
 // particle resting on others) are taken up slowly, under drag, not released at once. Particles born
 // on top of each other (a burst from one point) so part without being blasted apart.
-BLEEDSIM_HD inline void add_pair(const ParticleModel& m, float px, float py, float vx, float vy, std::uint32_t age,
-                                 std::uint32_t slot, float qx, float qy, float wx, float wy, std::uint32_t other_age,
-                                 std::uint32_t other, PairSums* sums) {
-  const float dx = px - qx;
-  const float dy = py - qy;
+BLEEDSIM_HD inline void add_pair(const ParticleModel& m, float dx, float dy, float vx, float vy, std::uint32_t age,
+                                 std::uint32_t slot, float wx, float wy, std::uint32_t other_age, std::uint32_t other,
+                                 PairSums* sums) {
   const float r2 = dx * dx + dy * dy;
   if (r2 >= m.range_sq) return;
   float nx, ny, r;
@@ -383,6 +395,7 @@ BLEEDSIM_HD inline void collide_particle(const ParticleArrays& p, const Particle
   const float vx = p.sorted_velocity[2 * i], vy = p.sorted_velocity[2 * i + 1];
   const std::uint32_t age = p.sorted_age[i];
   const int x0 = cx > 0 ? cx - 1 : 0, x1 = cx + 1 < m.cells_x ? cx + 1 : cx;
+  const SurfaceFrame own = curved(m.surface) ? frame_at(m.surface, px, py) : SurfaceFrame{1.0f, 0.0f, 1.0f};
   PairSums sums;
   for (int ny = cy - 1; ny <= cy + 1; ++ny) {
     if (ny < 0 || ny >= m.cells_y) continue;
@@ -390,12 +403,13 @@ BLEEDSIM_HD inline void collide_particle(const ParticleArrays& p, const Particle
     for (std::uint32_t j = run.begin; j < run.end; ++j) {
       if (j == std::uint32_t(i)) continue;
       const float qx = p.sorted_position[2 * j], qy = p.sorted_position[2 * j + 1];
-      const float dx = px - qx, dy = py - qy;
+      float dx = px - qx, dy = py - qy;
+      if (curved(m.surface)) to_surface(pair_frame(own, frame_at(m.surface, qx, qy)), dx, dy, &dx, &dy);
       const float r2 = dx * dx + dy * dy;
       if (r2 >= m.range_sq) continue;
       const std::uint32_t other = r2 > 0.0f ? 0u : p.sorted_slot[j];
-      add_pair(m, px, py, vx, vy, age, slot, qx, qy, p.sorted_velocity[2 * j],
-               p.sorted_velocity[2 * j + 1], p.sorted_age[j], other, &sums);
+      add_pair(m, dx, dy, vx, vy, age, slot, p.sorted_velocity[2 * j], p.sorted_velocity[2 * j + 1],
+               p.sorted_age[j], other, &sums);
     }
   }
   finish_pair_sums(p, m, slot, sums);
@@ -413,7 +427,9 @@ BLEEDSIM_HD inline float grip(const ParticleModel& m, std::uint32_t on_edge) {
 // grip as friction taken implicitly (Coulomb): it removes up to grip·dt of the speed, and holds a
 // particle it can stop, so the film comes to rest instead of creeping; then capped at the speed
 // limit. The new position from the new velocity, and the shift away from new particles. The
-// panel's edges stop a particle and take the speed it had into them (blood does not bounce).
+// panel's edges stop a particle and take the speed it had into them (blood does not bounce). On a
+// mesh, gravity is the surface's at the particle's texel, the move is taken back to the panel through
+// that texel's frame, and a move off the surface is not made: the particle stops where it was.
 BLEEDSIM_HD inline void integrate_particle(const ParticleArrays& p, const ParticleModel& m, int slot) {
   const std::uint32_t age = p.age[slot];
   if (!is_alive(m, age)) {
@@ -425,8 +441,17 @@ BLEEDSIM_HD inline void integrate_particle(const ParticleArrays& p, const Partic
     }
     return;
   }
-  float vx = (p.velocity[2 * slot] + m.dt_s * (m.gravity_x + p.acceleration[2 * slot])) / m.drag_divisor;
-  float vy = (p.velocity[2 * slot + 1] + m.dt_s * (m.gravity_y + p.acceleration[2 * slot + 1])) / m.drag_divisor;
+  const float x0 = p.position[2 * slot], y0 = p.position[2 * slot + 1];
+  float gx = m.gravity_x, gy = m.gravity_y;
+  SurfaceFrame frame{1.0f, 0.0f, 1.0f};
+  if (curved(m.surface)) {
+    const std::size_t texel = pixel_containing(m.surface.grid, x0, y0);
+    frame = frame_of(m.surface, texel);
+    gx = m.surface.gravity[kSurfaceGravityChannels * texel];
+    gy = m.surface.gravity[kSurfaceGravityChannels * texel + 1];
+  }
+  float vx = (p.velocity[2 * slot] + m.dt_s * (gx + p.acceleration[2 * slot])) / m.drag_divisor;
+  float vy = (p.velocity[2 * slot + 1] + m.dt_s * (gy + p.acceleration[2 * slot + 1])) / m.drag_divisor;
   const float speed_sq = vx * vx + vy * vy;
   const float held = grip(m, p.on_edge[slot]) * m.dt_s;
   if (speed_sq <= held * held) {
@@ -438,12 +463,23 @@ BLEEDSIM_HD inline void integrate_particle(const ParticleArrays& p, const Partic
     vx *= kept;
     vy *= kept;
   }
-  float x = p.position[2 * slot] + m.dt_s * vx + p.shift[2 * slot];
-  float y = p.position[2 * slot + 1] + m.dt_s * vy + p.shift[2 * slot + 1];
+  float mx = vx, my = vy, sx = p.shift[2 * slot], sy = p.shift[2 * slot + 1];
+  if (curved(m.surface)) {
+    to_panel(frame, vx, vy, &mx, &my);
+    to_panel(frame, sx, sy, &sx, &sy);
+  }
+  float x = x0 + m.dt_s * mx + sx;
+  float y = y0 + m.dt_s * my + sy;
   if (x < m.min_x) { x = m.min_x; vx = fmaxf(vx, 0.0f); }
   if (x > m.max_x) { x = m.max_x; vx = fminf(vx, 0.0f); }
   if (y < m.min_y) { y = m.min_y; vy = fmaxf(vy, 0.0f); }
   if (y > m.max_y) { y = m.max_y; vy = fminf(vy, 0.0f); }
+  if (curved(m.surface) && !on_surface(m.surface, x, y)) {
+    x = x0;
+    y = y0;
+    vx = 0.0f;
+    vy = 0.0f;
+  }
   p.position[2 * slot] = x;
   p.position[2 * slot + 1] = y;
   p.velocity[2 * slot] = vx;

@@ -1,4 +1,7 @@
 #pragma once
+#include <cmath>
+#include <cstddef>
+
 #include "core/physics/hd.h"
 
 namespace bleedsim {
@@ -17,6 +20,14 @@ BLEEDSIM_HD inline float pixel_centre_x_mm(const PixelGrid& g, int i) {
 }
 BLEEDSIM_HD inline float pixel_centre_y_mm(const PixelGrid& g, int j) {
   return (static_cast<float>(j) + 0.5f) * g.mm_per_px_y;
+}
+
+// The pixel holding (x, y), clamped to the panel (before the conversion: float→int of out-of-range
+// values differs between CPU and GPU).
+BLEEDSIM_HD inline std::size_t pixel_containing(const PixelGrid& g, float x, float y) {
+  const int i = int(fminf(fmaxf(floorf(x / g.mm_per_px_x), 0.0f), float(g.width - 1)));
+  const int j = int(fminf(fmaxf(floorf(y / g.mm_per_px_y), 0.0f), float(g.height - 1)));
+  return std::size_t(j) * std::size_t(g.width) + std::size_t(i);
 }
 
 }  // namespace bleedsim

@@ -14,6 +14,10 @@
 // its blood into the pixel holding its centre. A splat cut by the panel's edge keeps its whole
 // volume on the panel, spread over the pixels inside: blood at the edge is blood on the panel.
 //
+// On a tissue mesh (core/physics/surface.h) distances are the surface's, through the frame of the
+// particle's texel, so a footprint is an ellipse on the panel; and a pixel's film is its blood over
+// its area on the surface, the panel's pixel area times the texel's stretch det J.
+//
 // Deposits are summed in fixed point, 64-bit integer units of kSplatUnitMm: integer addition is
 // associative, so the CPU's loop and the GPU's atomics give the same sum in any order. The
 // weights are whole units too, so S is exact and a particle's deposits add up to its blood to
@@ -24,6 +28,7 @@
 #include "core/physics/hd.h"
 #include "core/physics/particles.h"
 #include "core/physics/pixel_grid.h"
+#include "core/physics/surface.h"
 
 namespace bleedsim {
 
@@ -54,6 +59,7 @@ struct SplatArgs {
   PixelGrid grid;
   std::uint64_t* units;     // grid.width × grid.height: the sum, in kSplatUnitMm
   float* thickness_mm;      // the same, in mm
+  SurfaceMap surface = {};  // a tissue mesh's maps; empty on the flat panel
 };
 
 // The footprint's shape at squared distance d2: 1 at the centre, 0 (with zero slope) at R.
@@ -70,40 +76,45 @@ BLEEDSIM_HD inline std::uint64_t blood_units(const SplatModel& s, float fade) {
   return std::uint64_t(fminf(s.particle_volume_mm3 * fade * s.units_per_mm3, kMaxDepositUnits) + 0.5f);
 }
 
-// The pixels a splat at (x, y) may reach: those whose centres lie within R, on the panel.
+// The pixels a splat at (x, y) may reach: those whose centres lie within R, on the panel; and the
+// surface's frame there (the identity on the flat panel).
 struct SplatFootprint {
   float x, y;
   int i0, i1, j0, j1;  // inclusive; empty when i1 < i0 or j1 < j0
+  SurfaceFrame frame;
 };
 
-BLEEDSIM_HD inline SplatFootprint splat_footprint(const SplatModel& s, const PixelGrid& g, float x, float y) {
-  const float w = float(g.width), h = float(g.height), r = s.radius_mm;
+BLEEDSIM_HD inline SplatFootprint splat_footprint(const SplatModel& s, const PixelGrid& g, float x, float y,
+                                                  const SurfaceMap& surface = {}) {
+  const float w = float(g.width), h = float(g.height);
+  SurfaceFrame frame{1.0f, 0.0f, 1.0f};
+  float rx = s.radius_mm, ry = s.radius_mm;
+  if (curved(surface)) {
+    frame = frame_at(surface, x, y);
+    panel_reach(frame, s.radius_mm, &rx, &ry);
+  }
   // Clamped before the conversions: float→int of out-of-range values differs between CPU and GPU.
   return {x, y,
-          int(clamp_float(ceilf((x - r) / g.mm_per_px_x - 0.5f), 0.0f, w)),
-          int(clamp_float(floorf((x + r) / g.mm_per_px_x - 0.5f), -1.0f, w - 1.0f)),
-          int(clamp_float(ceilf((y - r) / g.mm_per_px_y - 0.5f), 0.0f, h)),
-          int(clamp_float(floorf((y + r) / g.mm_per_px_y - 0.5f), -1.0f, h - 1.0f))};
+          int(clamp_float(ceilf((x - rx) / g.mm_per_px_x - 0.5f), 0.0f, w)),
+          int(clamp_float(floorf((x + rx) / g.mm_per_px_x - 0.5f), -1.0f, w - 1.0f)),
+          int(clamp_float(ceilf((y - ry) / g.mm_per_px_y - 0.5f), 0.0f, h)),
+          int(clamp_float(floorf((y + ry) / g.mm_per_px_y - 0.5f), -1.0f, h - 1.0f)),
+          frame};
 }
 
 // Calls visit(pixel, weight in units) for each pixel of the footprint, rows top to bottom, each
 // left to right: both sweeps of a particle see the same weights in the same order.
 template <class Visit>
-BLEEDSIM_HD inline void for_each_weight(const SplatModel& s, const PixelGrid& g, const SplatFootprint& f, Visit visit) {
+BLEEDSIM_HD inline void for_each_weight(const SplatModel& s, const PixelGrid& g, const SplatFootprint& f, bool curved,
+                                        Visit visit) {
   for (int j = f.j0; j <= f.j1; ++j) {
-    const float dy = pixel_centre_y_mm(g, j) - f.y;
+    const float py = pixel_centre_y_mm(g, j) - f.y;
     for (int i = f.i0; i <= f.i1; ++i) {
-      const float dx = pixel_centre_x_mm(g, i) - f.x;
+      float dx = pixel_centre_x_mm(g, i) - f.x, dy = py;
+      if (curved) to_surface(f.frame, dx, dy, &dx, &dy);
       visit(std::size_t(j) * std::size_t(g.width) + std::size_t(i), weight_units(splat_weight(s, dx * dx + dy * dy)));
     }
   }
-}
-
-// The pixel holding (x, y), clamped to the panel.
-BLEEDSIM_HD inline std::size_t pixel_containing(const PixelGrid& g, float x, float y) {
-  const int i = int(clamp_float(floorf(x / g.mm_per_px_x), 0.0f, float(g.width - 1)));
-  const int j = int(clamp_float(floorf(y / g.mm_per_px_y), 0.0f, float(g.height - 1)));
-  return std::size_t(j) * std::size_t(g.width) + std::size_t(i);
 }
 
 // A particle's shares are blood · weight / total, rounded half up: the integer quotient
@@ -140,15 +151,16 @@ BLEEDSIM_HD inline void splat_particle(const SplatArgs& a, int slot, Deposit dep
   const std::uint64_t blood = blood_units(a.splat, fade_alpha(a.lifetime, age));
   if (blood == 0) return;
   const float x = a.position[2 * slot], y = a.position[2 * slot + 1];
-  const SplatFootprint f = splat_footprint(a.splat, a.grid, x, y);
+  const SplatFootprint f = splat_footprint(a.splat, a.grid, x, y, a.surface);
+  const bool on_mesh = curved(a.surface);
   std::uint64_t total = 0;
-  for_each_weight(a.splat, a.grid, f, [&](std::size_t, std::uint64_t w) { total += w; });
+  for_each_weight(a.splat, a.grid, f, on_mesh, [&](std::size_t, std::uint64_t w) { total += w; });
   if (total == 0) {
     deposit(pixel_containing(a.grid, x, y), blood);
     return;
   }
   const ShareDivisor divisor = share_divisor(total);
-  for_each_weight(a.splat, a.grid, f, [&](std::size_t pixel, std::uint64_t w) {
+  for_each_weight(a.splat, a.grid, f, on_mesh, [&](std::size_t pixel, std::uint64_t w) {
     const std::uint64_t units = share_of(blood, w, divisor);
     if (units != 0) deposit(pixel, units);
   });
@@ -156,21 +168,24 @@ BLEEDSIM_HD inline void splat_particle(const SplatArgs& a, int slot, Deposit dep
 
 BLEEDSIM_HD inline float thickness_from_units(std::uint64_t units) { return float(units) * kSplatUnitMm; }
 
-// The sum converted to millimetres, pixel by pixel (core/physics/pixel_kernels.h runs it).
+// The sum converted to millimetres, pixel by pixel (core/physics/pixel_kernels.h runs it): on a mesh,
+// over the pixel's area on the surface.
 struct SplatThickness {
   PixelGrid grid;
   const std::uint64_t* units;
   float* thickness_mm;
+  SurfaceMap surface;
 
   BLEEDSIM_HD int width() const { return grid.width; }
   BLEEDSIM_HD int height() const { return grid.height; }
   BLEEDSIM_HD void operator()(int i, int j) const {
     const std::size_t p = std::size_t(j) * grid.width + i;
-    thickness_mm[p] = thickness_from_units(units[p]);
+    const float film = thickness_from_units(units[p]);
+    thickness_mm[p] = curved(surface) ? film / area_stretch(frame_of(surface, p)) : film;
   }
 };
 
-inline SplatThickness splat_thickness(const SplatArgs& a) { return {a.grid, a.units, a.thickness_mm}; }
+inline SplatThickness splat_thickness(const SplatArgs& a) { return {a.grid, a.units, a.thickness_mm, a.surface}; }
 
 // The stage's twins: clear the sum, deposit every live particle (a loop on the CPU, integer atomics
 // on the GPU), then SplatThickness's twin.

@@ -6,6 +6,7 @@
 // pixels of one cut grow in proportion (as in the report, where every pixel's increment is its
 // final value times a common factor), so a cut's state at any moment is one amplitude in [0, 1]
 // and the visible edge, where the stain crosses a threshold, moves outwards as it grows.
+// On a tissue mesh the distance is the surface's, through the pixel's frame (core/physics/surface.h).
 // Several stains combine as independent absorbers: the light left after all of them is the
 // product of what each lets through, stain = 1 − Π(1 − sᵢ), taken in cut order.
 #include <algorithm>
@@ -14,6 +15,7 @@
 
 #include "core/physics/hd.h"
 #include "core/physics/pixel_grid.h"
+#include "core/physics/surface.h"
 
 namespace bleedsim {
 
@@ -37,9 +39,11 @@ BLEEDSIM_HD inline float stain_profile(float d, float r) {
   return d < r ? sixth_power((r - d) / r) : 0.0f;
 }
 
-BLEEDSIM_HD inline float cut_stain(const SpreadCut& cut, float x_mm, float y_mm) {
-  const float dx = x_mm - cut.x_mm;
-  const float dy = y_mm - cut.y_mm;
+// `frame`: the surface's at (x, y), or null on the flat panel.
+BLEEDSIM_HD inline float cut_stain(const SpreadCut& cut, float x_mm, float y_mm, const SurfaceFrame* frame = nullptr) {
+  float dx = x_mm - cut.x_mm;
+  float dy = y_mm - cut.y_mm;
+  if (frame) to_surface(*frame, dx, dy, &dx, &dy);
   // Outside the cut's bounding square the stain is 0: skip the square root.
   if (fabsf(dx) >= cut.radius_mm || fabsf(dy) >= cut.radius_mm) return 0.0f;
   return stain_profile(sqrtf(dx * dx + dy * dy), cut.radius_mm) * cut.amplitude;
@@ -47,11 +51,13 @@ BLEEDSIM_HD inline float cut_stain(const SpreadCut& cut, float x_mm, float y_mm)
 
 // The combined stain of every cut at pixel (i, j).
 BLEEDSIM_HD inline float spread_stain(const SpreadCut* cuts, int cut_count, const PixelGrid& grid,
-                                      int i, int j) {
+                                      int i, int j, const SurfaceMap& surface = {}) {
   const float x = pixel_centre_x_mm(grid, i);
   const float y = pixel_centre_y_mm(grid, j);
+  const SurfaceFrame frame = curved(surface) ? frame_of(surface, std::size_t(j) * grid.width + i) : SurfaceFrame{};
+  const SurfaceFrame* on = curved(surface) ? &frame : nullptr;
   float light_left = 1.0f;
-  for (int c = 0; c < cut_count; ++c) light_left *= 1.0f - cut_stain(cuts[c], x, y);
+  for (int c = 0; c < cut_count; ++c) light_left *= 1.0f - cut_stain(cuts[c], x, y, on);
   return 1.0f - light_left;
 }
 
@@ -68,11 +74,12 @@ struct SpreadPixel {
   int cut_count;
   PixelGrid grid;
   float* stain;  // grid.width × grid.height, row-major
+  SurfaceMap surface = {};  // a tissue mesh's maps; empty on the flat panel
 
   BLEEDSIM_HD int width() const { return grid.width; }
   BLEEDSIM_HD int height() const { return grid.height; }
   BLEEDSIM_HD void operator()(int i, int j) const {
-    stain[std::size_t(j) * grid.width + i] = spread_stain(cuts, cut_count, grid, i, j);
+    stain[std::size_t(j) * grid.width + i] = spread_stain(cuts, cut_count, grid, i, j, surface);
   }
 };
 

@@ -21,6 +21,7 @@ const char* to_string(ParamType type) {
     case ParamType::integer: return "integer";
     case ParamType::number: return "number";
     case ParamType::vector: return "[x, y] numbers";
+    case ParamType::vector3: return "[x, y, z] numbers";
     case ParamType::text: return "string";
     case ParamType::flag: return "boolean";
     case ParamType::names: return "array of strings";
@@ -62,8 +63,10 @@ std::string ParamView::default_text() const {
   struct Text {
     std::string operator()(std::monostate) const { return "none"; }
     std::string operator()(double v) const { return format_number(v); }
-    std::string operator()(const std::pair<double, double>& v) const {
-      return "[" + format_number(v.first) + ", " + format_number(v.second) + "]";
+    std::string operator()(const std::vector<double>& v) const {
+      std::string out;
+      for (double c : v) out += (out.empty() ? "[" : ", ") + format_number(c);
+      return out + "]";
     }
     std::string operator()(const std::string& v) const { return v.empty() ? "none" : "\"" + v + "\""; }
     std::string operator()(bool v) const { return v ? "true" : "false"; }
@@ -77,7 +80,8 @@ std::string ParamView::allowed_text() const {
   switch (type) {
     case ParamType::integer:
     case ParamType::number: return range.describe(type);
-    case ParamType::vector: return "each " + range.describe(type);
+    case ParamType::vector:
+    case ParamType::vector3: return "each " + range.describe(type);
     case ParamType::flag: return "true or false";
     default: return "";
   }

@@ -17,7 +17,7 @@ namespace bleedsim {
 
 struct Scene;
 
-enum class ParamType { integer, number, vector, text, flag, names };
+enum class ParamType { integer, number, vector, vector3, text, flag, names };
 const char* to_string(ParamType type);
 
 // Why a value cannot be used, and the key to blame ("particles.substeps"); empty when it can.
@@ -45,10 +45,11 @@ struct Range {
   std::string describe(ParamType type) const;
 };
 
-// A two-component parameter ([x, y] in a file) held in two members.
+// A parameter of two or three components ([x, y] or [x, y, z] in a file) held in as many members.
 struct VectorRef {
   double& x;
   double& y;
+  double* z = nullptr;  // a three-component one's third
 };
 
 // Where a parameter lives in its struct: a function from the struct to the member. A key that no
@@ -62,6 +63,7 @@ using ParamField =
 // The member `path` of P as a ParamField: BLEEDSIM_MEMBER(ParticleParams, diameter_mm).
 #define BLEEDSIM_MEMBER(P, path) (+[](P& p) -> decltype(auto) { return (p.path); })
 #define BLEEDSIM_VECTOR(P, x, y) (+[](P& p) { return VectorRef{p.x, p.y}; })
+#define BLEEDSIM_VECTOR3(P, x, y, z) (+[](P& p) { return VectorRef{p.x, p.y, &p.z}; })
 
 template <class P>
 struct Param {
@@ -128,7 +130,7 @@ struct ParamView {
   bool required;
   std::string default_note;                  // empty: `default_value` says it
   std::string allowed_note;                  // empty: the range says it
-  std::variant<std::monostate, double, std::pair<double, double>, std::string, bool,
+  std::variant<std::monostate, double, std::vector<double>, std::string, bool,
                std::vector<std::string>>
       default_value;                         // P{}'s; monostate: none (required, or no member holds it)
   std::string default_text() const;          // "0.2", "[0, 1000]", "true", "the diameter", "**required**"

@@ -34,6 +34,7 @@ ParamProblem check_params(const ParamTable<P>& table, const P& params, const Sce
             const VectorRef v = field(const_cast<P&>(params));
             problem = range_problem(key + ".x", param.type, param.range, v.x);
             if (!problem) problem = range_problem(key + ".y", param.type, param.range, v.y);
+            if (!problem && v.z) problem = range_problem(key + ".z", param.type, param.range, *v.z);
           } else if constexpr (std::is_same_v<F, int& (*)(P&)> || std::is_same_v<F, std::uint8_t& (*)(P&)> ||
                                std::is_same_v<F, std::uint64_t& (*)(P&)> || std::is_same_v<F, double& (*)(P&)>) {
             problem = range_problem(key, param.type, param.range, params_detail::as_number(field, params));
@@ -61,7 +62,7 @@ TableView describe(const ParamTable<P>& table) {
             if constexpr (std::is_same_v<F, std::monostate>) {
             } else if constexpr (std::is_same_v<F, VectorRef (*)(P&)>) {
               const VectorRef v = field(const_cast<P&>(defaults));
-              p.default_value = std::make_pair(v.x, v.y);
+              p.default_value = v.z ? std::vector<double>{v.x, v.y, *v.z} : std::vector<double>{v.x, v.y};
             } else if constexpr (std::is_same_v<F, std::string& (*)(P&)> || std::is_same_v<F, bool& (*)(P&)> ||
                                  std::is_same_v<F, std::vector<std::string>& (*)(P&)>) {
               p.default_value = params_detail::member(field, defaults);

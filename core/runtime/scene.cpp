@@ -53,6 +53,11 @@ MemoryPart Domain::memory(Count bytes_per_pixel) const {
           pixels() * bytes_per_pixel};
 }
 
+Eigen::Vector3d Scene::device_gravity_mm_s2() const {
+  if (!particles) return Eigen::Vector3d::Zero();
+  return Eigen::Vector3d(particles->gravity_x_mm_s2, -particles->gravity_y_mm_s2, 0.0);
+}
+
 PixelGrid Domain::grid() const {
   return PixelGrid{width_px, height_px, static_cast<float>(width_mm / width_px),
                    static_cast<float>(height_mm / height_px)};

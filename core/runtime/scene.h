@@ -5,6 +5,7 @@
 // written and the output settings beside the Scene, not in it. State holds everything that changes.
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -19,6 +20,7 @@
 #include "core/effects/vessel_params.h"
 #include "core/haptics/haptic_params.h"
 #include "core/haptics/trace.h"
+#include "core/mesh/mesh_surface.h"
 #include "core/physics/pixel_grid.h"
 #include "core/runtime/count.h"
 #include "core/runtime/cut.h"
@@ -56,6 +58,10 @@ struct Scene {
   std::uint64_t seed = 0;
   Image tissue;                        // domain-sized RGBA8
   std::string tissue_source;           // file path, or "procedural"
+  // The tissue's surface, placed in the device frame (mm): the texture is its uv map and the panel
+  // its texture (docs/mesh.md). None: the flat panel.
+  std::shared_ptr<const MeshSurface> mesh;
+  std::string mesh_source;             // the mesh's file, when there is one
   std::optional<SpreadParams> spread;  // the effects the scene calls for
   std::optional<ParticleParams> particles;
   std::optional<BlurParams> blur;
@@ -80,6 +86,10 @@ struct Scene {
   // Haptic ticks (1 kHz, tick n at n ms) at or before the end of frame k: ticks 0 .. n_k − 1 have
   // run when frame k is computed. From integer counts, so no clock drifts from another.
   std::int64_t haptic_ticks_through_frame(std::int64_t k) const;
+  // Gravity in the device frame (mm/s²), for a tissue mesh: the particles' gravity_mm_s2 means the
+  // same on a mesh as on the flat panel, which faces the user: x right, y down the panel (the
+  // device's −y). Zero without particles.
+  Eigen::Vector3d device_gravity_mm_s2() const;
 };
 
 // The [scene] table: the panel, time and seed.

@@ -103,6 +103,34 @@ TEST_F(BadInput, TissueFileThatIsNotAPng) {
   expect_refused(scenario_with("", "[tissue]\ntexture = \"junk.png\"\n"), {"bad.toml:12:", "tissue.texture", "junk.png"});
 }
 
+// A tissue mesh: a missing file, and each kind of bad mesh, exits 2 naming the scenario's key or the
+// mesh file and its face (docs/mesh.md lists the checks; tests/io/mesh_obj_test.cpp has every kind).
+TEST_F(BadInput, ABadTissueMeshNamesItsFileAndTheProblem) {
+  const std::string square = "v 0 0 0\nv 16 0 0\nv 16 -12 0\nv 0 -12 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n";
+  expect_refused(scenario_with("", "[tissue]\nmesh = \"no-such.obj\"\n"),
+                 {"bad.toml:12:8: tissue.mesh: cannot read", "no-such.obj"});
+  write_text(dir_ / "no-uv.obj", "v 0 0 0\nv 16 0 0\nv 16 -12 0\nf 1 2 3\n");
+  expect_refused(scenario_with("", "[tissue]\nmesh = \"no-uv.obj\"\n"), {"no-uv.obj", "face 1", "texture coordinate"});
+  write_text(dir_ / "flat.obj", square + "f 1/1 2/2 2/2\n");
+  expect_refused(scenario_with("", "[tissue]\nmesh = \"flat.obj\"\n"), {"flat.obj", "face 1", "no area"});
+  write_text(dir_ / "fan.obj", square + "v 8 -6 5\nf 1/1 3/3 2/2\nf 1/1 3/3 4/4\nf 1/1 3/3 5/2\n");
+  expect_refused(scenario_with("", "[tissue]\nmesh = \"fan.obj\"\n"), {"fan.obj", "borders 3 faces", "non-manifold"});
+}
+
+TEST_F(BadInput, AMeshsPlacementWithoutAMeshOrThePanelsPlacementWithOne) {
+  expect_refused(scenario_with("", "[tissue]\nmesh_scale = 2\n"),
+                 {"bad.toml:12:", "tissue.mesh_scale: places a tissue mesh, and this scene names none"});
+  expect_refused(scenario_with("", "[tissue]\nmesh_position_mm = [0, 0]\n"),
+                 {"bad.toml:12:", "tissue.mesh_position_mm", "expected [x, y, z], three numbers, got an array of 2"});
+  write_text(dir_ / "panel.obj", "v 0 0 0\nv 16 0 0\nv 16 -12 0\nvt 0 0\nvt 1 0\nvt 1 1\nf 1/1 2/2 3/3\n");
+  const std::string trace = source_dir() + "/scenarios/traces/single-stroke.csv";
+  expect_refused(scenario_with("", "[haptics]\ntrace = \"" + trace + "\"\nsurface_z_mm = 100\n[tissue]\nmesh = \"panel.obj\"\n"),
+                 {"bad.toml:13:", "haptics.surface_z_mm: places the flat panel under the stylus"});
+  expect_refused(scenario_with("", "[particles]\n[[tip]]\nt_s = 0\nx_mm = 1\ny_mm = 1\n[[tip]]\nt_s = 1\nx_mm = 2\n"
+                                   "y_mm = 1\n[suction]\n[tissue]\nmesh = \"panel.obj\"\n"),
+                 {"bad.toml:20:1: suction: the instrument's suction acts on the flat panel only"});
+}
+
 TEST_F(BadInput, ParticleSubStepPastTheStabilityLimit) {
   // 10 sub-steps at 30 Hz are 3.333 ms, far past the default contact's limit on this 16 × 12 mm
   // panel (tests/io/scenario_effects_test.cpp derives it: 0.1491 ms, 224 sub-steps at least).

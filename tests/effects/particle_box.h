@@ -1,5 +1,6 @@
 #pragma once
-// Particles placed by hand in a box and stepped on the CPU reference, one physics step at a time:
+// Particles placed by hand in a box and stepped on the CPU reference, one physics step at a time
+// (on the scene's tissue mesh, when it has one):
 // for the tests that need a known start (a lone particle, a drop, a deep pile, a mirrored pair of
 // blobs) rather than what a cut emits. It runs the same phases, in the same order, as the particle
 // stage does; there is no emission.
@@ -11,6 +12,8 @@
 
 #include "core/effects/particle_buffers.h"
 #include "core/effects/particle_model.h"
+#include "core/effects/surface_stage.h"
+#include "core/mesh/surface_bake.h"
 #include "core/runtime/backend.h"
 #include "core/runtime/scene.h"
 
@@ -64,6 +67,10 @@ class ParticleBox {
   // Particles at `points`, at rest, old enough that their forces are at full strength.
   ParticleBox(const Scene& scene, const std::vector<Point>& points)
       : scene_(scene), model_(make_particle_model(scene)), cpu_(make_cpu_backend(1)), n_(int(points.size())) {
+    if (scene.mesh) {
+      maps_ = bake_surface_maps(scene.mesh->mesh(), texture_panel(scene.domain), scene.device_gravity_mm_s2());
+      model_.surface = {maps_.frame.data(), maps_.gravity.data(), scene.domain.grid()};
+    }
     ParticleArrays& a = args_.arrays;
     a.capacity = n_;
     position_ = cpu_->allocate(2 * n_ * sizeof(float));
@@ -114,6 +121,7 @@ class ParticleBox {
   ParticleModel model_;
   std::unique_ptr<Backend> cpu_;
   int n_;
+  SurfaceMaps maps_;
   Buffer position_, velocity_, age_, scratch_;
   ParticleArgs args_{};
 };

@@ -49,7 +49,8 @@ void expect_each_range_refused_both_ways(const ParamTable<P>& table, const P& va
   int tested = 0;
   for (const Param<P>& param : table.params) {
     const bool has_range =
-        param.type == ParamType::integer || param.type == ParamType::number || param.type == ParamType::vector;
+        param.type == ParamType::integer || param.type == ParamType::number || param.type == ParamType::vector ||
+        param.type == ParamType::vector3;
     const std::optional<double> bad = below(param.range);
     if (!has_range || !bad) continue;
     P params = valid;
@@ -71,7 +72,8 @@ void expect_each_range_refused_both_ways(const ParamTable<P>& table, const P& va
           }
         },
         param.field);
-    const std::string key = at + "." + param.key + (param.type == ParamType::vector ? ".y" : "");
+    const bool vector = param.type == ParamType::vector || param.type == ParamType::vector3;
+    const std::string key = at + "." + param.key + (vector ? ".y" : "");
     const std::string message = range_problem(key, param.type, param.range, *bad).message;
     if (numeric) {
       const ParamProblem in_code = check_params(table, params, scene, at);
@@ -84,7 +86,8 @@ void expect_each_range_refused_both_ways(const ParamTable<P>& table, const P& va
     for (const auto& [k, v] : text.required)
       if (k != param.key) file += k + " = " + v + "\n", ++line;
     const std::string value = toml_number(*bad, param.type);
-    file += std::string(param.key) + " = " + (param.type == ParamType::vector ? "[0, " + value + "]" : value) + "\n";
+    const std::string third = param.type == ParamType::vector3 ? ", 0]" : "]";
+    file += std::string(param.key) + " = " + (vector ? "[0, " + value + third : value) + "\n";
     EXPECT_TRUE(test::refused_at(file, line, key, message)) << file;
     ++tested;
   }

@@ -10,30 +10,13 @@
 
 #include "core/io/mesh_obj.h"
 #include "core/mesh/mesh_surface.h"
+#include "tests/mesh/meshes_in_code.h"
 #include "tests/test_paths.h"
 
 namespace bleedsim {
 namespace {
 
-// A cylinder patch of radius r over `span` radians and height h: n facets around, m rows up,
-// uv = (θ / span, z / h) at its vertices.
-TissueMesh cylinder_patch(double r, double span, double h, int n, int m) {
-  TissueMesh mesh;
-  for (int j = 0; j <= m; ++j)
-    for (int i = 0; i <= n; ++i) {
-      const double theta = span * i / n;
-      mesh.positions.emplace_back(r * std::cos(theta), r * std::sin(theta), h * j / m);
-      mesh.uvs.emplace_back(double(i) / n, double(j) / m);
-    }
-  const auto at = [&](int i, int j) { return j * (n + 1) + i; };
-  for (int j = 0; j < m; ++j)
-    for (int i = 0; i < n; ++i) {
-      const int a = at(i, j), b = at(i + 1, j), c = at(i + 1, j + 1), d = at(i, j + 1);
-      mesh.triangles.push_back({{a, b, c}, {a, b, c}});
-      mesh.triangles.push_back({{a, c, d}, {a, c, d}});
-    }
-  return mesh;
-}
+using test::cylinder_patch;
 
 TEST(MeshSurface, TheClosestPointOfATriangleIsNoFartherThanAnyOfItsPoints) {
   const Eigen::Vector3d a(0, 0, 0), b(3, 0.5, 0), c(1, 2, 0.7);
