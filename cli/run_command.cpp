@@ -20,6 +20,7 @@
 #include "core/io/contact_sheet.h"
 #include "core/io/hdf5_writer.h"
 #include "core/io/png_writer.h"
+#include "core/mesh/view_render.h"
 #include "core/io/scenario.h"
 #include "core/runtime/simulation.h"
 #include "core/runtime/timing_summary.h"
@@ -76,6 +77,12 @@ std::vector<std::pair<std::string, std::string>> provenance(const Simulation& si
 
 bool png_due(long frame, long frames, int every) {
   return every > 0 && (frame % every == 0 || frame == frames - 1);
+}
+
+std::string view_png_name(long frame) {
+  char name[32];
+  std::snprintf(name, sizeof name, "view_%06ld.png", frame);
+  return name;
 }
 
 std::string png_name(long frame) {
@@ -148,9 +155,16 @@ int run_command(const RunOptions& options) {
   RunFiles files(folder.path());
   folder.keep();
   const std::vector<FieldLayout> specs = fields_to_write(sim, out.fields);
-  std::unique_ptr<ContactSheet> sheet;
+  std::unique_ptr<ContactSheet> sheet, view_sheet;
   if (out.contact_sheet > 0)
     sheet = std::make_unique<ContactSheet>(frames, out.contact_sheet, s.domain.width_px, s.domain.height_px);
+  const std::optional<ViewCamera>& view = scenario.view;
+  if (out.contact_sheet > 0 && view)
+    view_sheet = std::make_unique<ContactSheet>(frames, out.contact_sheet, view->width_px, view->height_px);
+  // The mesh drawn with frame k's texture, from the scenario's endoscope.
+  const auto view_of = [&](const std::vector<std::uint8_t>& frame) {
+    return render_view(s.mesh->mesh(), Image{s.domain.width_px, s.domain.height_px, frame}, *view);
+  };
 
   if (!options.quiet)
     std::printf("bleedsim: %s: %ld frames of %d x %d px on %s (%s; %s)\n", s.name.c_str(), frames,
@@ -193,8 +207,14 @@ int run_command(const RunOptions& options) {
         write_png_rgba((files.partial("png") / png_name(k)).string(), s.domain.width_px, s.domain.height_px,
                        host[0].data());
         ++pngs;
+        if (view) {
+          const Image seen = view_of(host[0]);
+          write_png_rgba((files.partial("png") / view_png_name(k)).string(), seen.width, seen.height, seen.rgba.data());
+          ++pngs;
+        }
       }
       if (sheet && sheet->wants(k)) sheet->add(k, host[0].data());
+      if (view_sheet && view_sheet->wants(k)) view_sheet->add(k, view_of(host[0]).rgba.data());
       written = k + 1;
       progress.update(k + 1);
     }
@@ -202,6 +222,7 @@ int run_command(const RunOptions& options) {
     if (writer) writer->finish(written == frames);
     // An interrupted run's sheet shows the frames it reached; the cells after stay dark.
     if (sheet) sheet->write(files.partial("contact_sheet.png").string());
+    if (view_sheet) view_sheet->write(files.partial("view_contact_sheet.png").string());
   } catch (const std::exception& e) {
     progress.clear();
     throw write_failure(e, written, files);
@@ -214,6 +235,7 @@ int run_command(const RunOptions& options) {
   std::string wrote = options.hdf5 ? files.published("frames.h5").string() : std::string("no HDF5");
   if (pngs > 0) wrote += " and " + std::to_string(pngs) + " PNGs in " + files.published("png").string();
   if (sheet) wrote += " and " + files.published("contact_sheet.png").string();
+  if (view_sheet) wrote += " and " + files.published("view_contact_sheet.png").string();
   if (interrupted) {
     std::fprintf(stderr, "bleedsim: interrupted after %ld of %ld frames; kept %s\n", done, frames,
                  wrote.c_str());

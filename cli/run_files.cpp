@@ -74,7 +74,7 @@ void finish_swap(const fs::path& folder) {
 }  // namespace
 
 const std::vector<std::string>& RunFiles::names() {
-  static const std::vector<std::string> names = {"frames.h5", "png", "contact_sheet.png"};
+  static const std::vector<std::string> names = {"frames.h5", "png", "contact_sheet.png", "view_contact_sheet.png"};
   return names;
 }
 

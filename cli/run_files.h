@@ -1,6 +1,6 @@
 #pragma once
-// The files of one run in its output folder (docs/reliability.md): frames.h5, png/ and
-// contact_sheet.png. A run writes them into a partial folder beside the last run's, and when it
+// The files of one run in its output folder (docs/reliability.md): frames.h5, png/,
+// contact_sheet.png and, with a [view], view_contact_sheet.png. A run writes them into a partial folder beside the last run's, and when it
 // ends they are swapped in together, so the folder shows one whole run, never a mix of two.
 #include <filesystem>
 #include <string>

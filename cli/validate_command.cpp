@@ -10,6 +10,7 @@
 #include "core/haptics/haptics.h"
 #include "core/effects/pipeline.h"
 #include "core/effects/particle_model.h"
+#include "core/effects/surface_stage.h"
 #include "core/io/scenario.h"
 #include "core/haptics/trace_replay.h"
 #include "core/runtime/message_text.h"
@@ -136,6 +137,13 @@ int validate_command(const std::string& scenario) {
   std::printf("  time       %g s at %g Hz: %d frames\n", scene.duration_s, scene.frame_rate_hz,
               scene.frame_count());
   std::printf("  tissue     %s\n", scene.tissue_source.c_str());
+  if (scene.mesh) {
+    // How the texture stretches over it: surface mm per panel mm, least and greatest.
+    const TissueMesh& mesh = scene.mesh->mesh();
+    const PanelStretch stretch = panel_stretch(mesh, texture_panel(scene.domain));
+    std::printf("  mesh       %s: %zu triangles, %.1f mm²; a panel mm is %.3g to %.3g mm of its surface\n",
+                scene.mesh_source.c_str(), mesh.triangles.size(), mesh.area_mm2(), stretch.least, stretch.greatest);
+  }
   std::printf("  cuts       %zu%s\n", scene.cuts.size(), scene.trace ? " scripted, and the stylus' (below)" : "");
   std::printf("  stages     %s\n", stages.c_str());
   const std::int64_t stylus_cuts = scene.trace ? describe_haptics(scene) : 0;

@@ -66,6 +66,39 @@ const ParamTable<TissueFile>& tissue_table() {
   return table;
 }
 
+// A view draws the mesh; its camera must look somewhere, with an up that is not its view.
+ParamProblem camera_looks_somewhere(const ViewCamera& camera, const Scene&) {
+  try {
+    check_view_camera(camera);
+  } catch (const std::invalid_argument& e) {
+    return {"look_at_mm", e.what()};
+  }
+  return {};
+}
+
+const ParamTable<ViewCamera>& view_table() {
+  using T = ParamType;
+  using P = ViewCamera;
+  static const ParamTable<ViewCamera> table{
+      "view",
+      "the tissue mesh drawn with its bleeding texture from an endoscope, beside each PNG frame "
+      "(png/view_NNNNNN.png) and as view_contact_sheet.png; needs tissue.mesh",
+      {{"eye_mm", T::vector3, BLEEDSIM_VECTOR3(P, eye_mm.x(), eye_mm.y(), eye_mm.z()), "mm", {-1e4, 1e4},
+        "the endoscope's tip in the device frame (x right, y up, z towards the user)", nullptr, true},
+       {"look_at_mm", T::vector3, BLEEDSIM_VECTOR3(P, look_at_mm.x(), look_at_mm.y(), look_at_mm.z()), "mm",
+        {-1e4, 1e4}, "the point it looks at, the middle of the image", nullptr, true},
+       {"up", T::vector3, BLEEDSIM_VECTOR3(P, up.x(), up.y(), up.z()), "", {-1e4, 1e4},
+        "the direction that is up in the image; not along the view"},
+       {"fov_y_deg", T::number, BLEEDSIM_MEMBER(P, fov_y_deg), "°", {0, 180, true},
+        "the vertical field of view (under 180°)"},
+       {"width_px", T::integer, BLEEDSIM_MEMBER(P, width_px), "px", {1, 16384}, "the view's width"},
+       {"height_px", T::integer, BLEEDSIM_MEMBER(P, height_px), "px", {1, 16384}, "the view's height"}},
+      {{"the camera looks somewhere (eye_mm is not look_at_mm), up is not along the view, fov_y_deg is "
+        "under 180",
+        camera_looks_somewhere}}};
+  return table;
+}
+
 // The output folder defaults to out/<name>; the fields listed must be ones this scene makes.
 ParamProblem resolve_output(OutputSpec& out, const Written& written, const Scene& scene) {
   if (!written.has("dir")) out.dir = "out/" + scene.name;
@@ -370,6 +403,18 @@ void refuse_what_a_mesh_replaces(const Scenario& s) {
 
 // The tissue comes last: it is the one large allocation, made only once the scene is known to fit:
 // the tissue, a texture's decoding and every stage's memory, each part under the key that sets it.
+// [view], once the tissue is known: it draws the mesh, and a scene without one has nothing to draw.
+void read_view(Reader& r, const toml::table& root, Scenario& s) {
+  const toml::table* t = r.table(root, "view");
+  if (!t) return;
+  ViewCamera camera;
+  r.read(t, view_table(), camera, s.scene, "view");
+  if (!s.scene.mesh)
+    throw InputError(s.place_of("view"), "view", "draws the tissue mesh from an endoscope; this scene has no "
+                                                 "tissue.mesh");
+  s.view = camera;
+}
+
 // A file named in the scenario, relative to the scenario file.
 std::string beside(const Scenario& s, const std::string& name) {
   fs::path file = name;
@@ -463,7 +508,8 @@ std::vector<TableView> scenario_tables() {
           describe(particle_table()), describe(blur_table()),   describe(trail_table()),
           describe(optics_table()),   describe(pulse_table()),  describe(vessel_table()),
           describe(haptic_table()),   describe(suction_table()), describe(contact_table()),
-          describe(cut_table()),      describe(tip_table()),     describe(output_table())};
+          describe(cut_table()),      describe(tip_table()),     describe(view_table()),
+          describe(output_table())};
 }
 
 const ParamView& scenario_param(const std::string& key) {
@@ -509,6 +555,7 @@ Scenario parse_scenario(const std::string& text, const std::string& path, ReadTi
   if (const ParamProblem problem = tip_path_problem(s.scene))
     throw InputError(s.place_of(problem.key), problem.key, problem.message);
   const TissueFile tissue_file = read_tissue_table(r, root, s);
+  read_view(r, root, s);
   r.read(r.table(root, "output"), output_table(), s.output, s.scene, "output");
   read_tissue(tissue_file, s, tissue);
   return s;

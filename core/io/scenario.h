@@ -3,10 +3,12 @@
 // outputs, its text and where each key was written.
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "core/io/output_spec.h"
+#include "core/mesh/view_render.h"
 #include "core/runtime/input_error.h"
 #include "core/runtime/params.h"
 #include "core/runtime/scene.h"
@@ -19,6 +21,7 @@ struct Scenario {
   std::string path;  // the scenario file
   std::string text;  // its text, recorded in every output for provenance
   std::map<std::string, SourcePlace> places;  // where each key was written, for later messages
+  std::optional<ViewCamera> view;             // [view]: the tissue mesh as an endoscope sees it
 
   // Where `key` was written (the file alone when it was not).
   SourcePlace place_of(const std::string& key) const;

@@ -10,6 +10,7 @@
 
 #include "core/effects/blend_stage.h"
 #include "core/physics/optics.h"
+#include "core/runtime/message_text.h"
 
 namespace bleedsim {
 namespace {
@@ -21,8 +22,9 @@ constexpr int kMaxSamplesPerAxis = 16;
 constexpr long long kBandSamples = 1 << 19;
 constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
+// As a scenario writes it: [0, 0, 1].
 std::string text(const Eigen::Vector3d& v) {
-  return "(" + std::to_string(v.x()) + ", " + std::to_string(v.y()) + ", " + std::to_string(v.z()) + ")";
+  return "[" + format_number(v.x()) + ", " + format_number(v.y()) + ", " + format_number(v.z()) + "]";
 }
 
 // The camera's frame: a point p is at ((p − eye)·right, (p − eye)·up, (p − eye)·forward) in it, the
@@ -59,12 +61,12 @@ CameraFrame camera_frame(const ViewCamera& c) {
     refuse("up " + text(c.up) + " is parallel to the view direction " + text(f.forward) +
            ": the image's roll is undefined");
   if (!(c.fov_y_deg > 0.0 && c.fov_y_deg < 180.0))
-    refuse("fov_y_deg is " + std::to_string(c.fov_y_deg) + "; a pinhole's field of view is in (0, 180) degrees");
+    refuse("fov_y_deg is " + format_number(c.fov_y_deg) + "; a pinhole's field of view is in (0, 180) degrees");
   if (c.width_px < 1 || c.width_px > kMaxSide || c.height_px < 1 || c.height_px > kMaxSide)
     refuse("the image is " + std::to_string(c.width_px) + " x " + std::to_string(c.height_px) +
            " pixels; width_px and height_px must be 1 to " + std::to_string(kMaxSide));
   if (!(c.near_mm > 0.0 && std::isfinite(c.near_mm)))
-    refuse("near_mm is " + std::to_string(c.near_mm) + "; the near plane must be a positive distance in front of the eye");
+    refuse("near_mm is " + format_number(c.near_mm) + "; the near plane must be a positive distance in front of the eye");
   f.eye = c.eye_mm;
   f.right = side.normalized();
   f.up = f.right.cross(f.forward);
@@ -76,6 +78,12 @@ CameraFrame camera_frame(const ViewCamera& c) {
   f.near = c.near_mm;
   return f;
 }
+
+}  // namespace
+
+void check_view_camera(const ViewCamera& camera) { camera_frame(camera); }
+
+namespace {
 
 void check_mesh(const TissueMesh& mesh) {
   const auto refuse = [](const std::string& why) { throw std::invalid_argument("view of a mesh: " + why); };

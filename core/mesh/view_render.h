@@ -64,6 +64,9 @@ struct ViewLight {
 // or a coordinate that is not finite.
 Image render_view(const TissueMesh& mesh, const Image& texture, const ViewCamera& camera, const ViewLight& light = {});
 
+// Throws std::invalid_argument, as render_view would, when the camera is degenerate (above).
+void check_view_camera(const ViewCamera& camera);
+
 // What the rasteriser found at each sample before shading, for tests and tools: the sample grid is
 // width_px · n × height_px · n, row-major, top row first; sample (x, y) has its centre at
 // ((x + ½) / n, (y + ½) / n) in pixels.

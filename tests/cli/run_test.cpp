@@ -71,6 +71,30 @@ TEST(Run, WritesAContactSheetOfTheFramesAskedFor) {
   EXPECT_EQ(png_size(out / "contact_sheet.png"), std::make_pair(2 * 160 + 3 * 4, 2 * 120 + 3 * 4));
 }
 
+TEST(Run, ASceneWithAViewDrawsTheMeshBesideEachPngAndInASheet) {
+  // The turbinate scene for a third of a second: PNGs of frames 0, 5 and 9, each with its view, and
+  // both contact sheets; validate names the mesh and how the texture stretches over it.
+  const fs::path dir = scratch_folder(), out = dir / "turbinate";
+  std::string text = read_bytes(scenario("turbinate.toml"));
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"duration_s = 6.0", "duration_s = 0.34"},
+                                 {"\"meshes/turbinate.obj\"", "\"" + scenario("meshes/turbinate.obj") + "\""}}) {
+    ASSERT_NE(text.find(from), std::string::npos) << from;
+    text.replace(text.find(from), from.size(), to);
+  }
+  write_text(dir / "short.toml", text);
+  const CliResult result = run_cli("run '" + (dir / "short.toml").string() + "' --backend cpu --png-every 5 " +
+                                   "--contact-sheet 2 --out '" + out.string() + "'");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  for (const char* file : {"png/frame_000000.png", "png/view_000000.png", "png/view_000005.png", "png/view_000009.png",
+                           "contact_sheet.png", "view_contact_sheet.png"})
+    EXPECT_TRUE(fs::exists(out / file)) << file << " in " << result.output;
+  EXPECT_NE(result.output.find("6 PNGs"), std::string::npos) << result.output;
+  const CliResult validate = run_cli("validate '" + scenario("turbinate.toml") + "'");
+  EXPECT_NE(validate.output.find("3072 triangles, 749.9 mm²; a panel mm is 0.585 to 1.67 mm of its surface"),
+            std::string::npos) << validate.output;
+  EXPECT_NE(validate.output.find("stages     surface, spread, particles"), std::string::npos) << validate.output;
+}
+
 TEST(Run, TheSameSceneTwiceGivesByteIdenticalFiles) {
   const fs::path dir = scratch_folder();
   for (const char* name : {"a", "b"}) {

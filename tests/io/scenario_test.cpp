@@ -240,7 +240,7 @@ TEST(ScenarioBadInput, UnknownKeyFarFromAnyListsTheKnownOnes) {
 
 TEST(ScenarioBadInput, UnknownTopLevelTable) {
   EXPECT_TRUE(refused_at(kBase + "[lighting]\nlamps = 3\n", kEnd, "lighting",
-                         "unknown table (known here: scene tissue spread particles blur trail optics pulse vessels haptics suction contact cut tip output)"));
+                         "unknown table (known here: scene tissue spread particles blur trail optics pulse vessels haptics suction contact cut tip view output)"));
   EXPECT_TRUE(refused_at(kBase + "[sprad]\n", kEnd, "sprad", "unknown table; did you mean 'spread'?"));
   EXPECT_TRUE(refused_at(kBase + "[particle]\n", kEnd, "particle", "unknown table; did you mean 'particles'?"));
   EXPECT_TRUE(refused_at(kBase + "[blurr]\n", kEnd, "blurr", "unknown table; did you mean 'blur'?"));
@@ -383,6 +383,16 @@ TEST(ScenarioBadInput, OutputFieldOfAnEffectTheSceneDoesNotDeclare) {
   EXPECT_TRUE(refused_at(without_lines(kBase, 8, 9) + "fields = [\"spread/stain\"]\n", kEnd,
                          "output.fields[0]",
                          "'spread/stain' needs the [spread] effect, which this scene does not declare"));
+}
+
+TEST(ScenarioBadInput, AViewWithoutATissueMesh) {
+  EXPECT_TRUE(refused_at(kBase + "[view]\neye_mm = [0, 0, 130]\nlook_at_mm = [0, 0, 100]\n", kEnd, "view",
+                         "draws the tissue mesh from an endoscope; this scene has no tissue.mesh"));
+}
+
+TEST(ScenarioBadInput, OutputFieldOfTheSurfaceWithoutATissueMesh) {
+  EXPECT_TRUE(refused_at(kBase + "fields = [\"surface/frame\"]\n", kEnd, "output.fields[0]",
+                         "'surface/frame' needs a tissue mesh (tissue.mesh), which this scene does not have"));
 }
 
 TEST(ScenarioBadInput, OutputFieldListedTwice) {

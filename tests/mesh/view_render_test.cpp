@@ -505,14 +505,14 @@ TEST(ViewRender, BadCamerasAreRefusedByName) {
   };
   const std::vector<Case> cases = {
       {[](ViewCamera& c, ViewLight&, Image&, TissueMesh&) { c.look_at_mm = c.eye_mm; }, "the same point"},
-      {[](ViewCamera& c, ViewLight&, Image&, TissueMesh&) { c.up = {0, 0, -3}; }, "up (0.000000, 0.000000, -3.000000) is parallel to the view direction"},
+      {[](ViewCamera& c, ViewLight&, Image&, TissueMesh&) { c.up = {0, 0, -3}; }, "up [0, 0, -3] is parallel to the view direction"},
       {[](ViewCamera& c, ViewLight&, Image&, TissueMesh&) { c.up = {0, 0, 0}; }, "up is the zero vector"},
-      {[](ViewCamera& c, ViewLight&, Image&, TissueMesh&) { c.fov_y_deg = 0; }, "fov_y_deg is 0.000000"},
-      {[](ViewCamera& c, ViewLight&, Image&, TissueMesh&) { c.fov_y_deg = 180; }, "fov_y_deg is 180.000000"},
+      {[](ViewCamera& c, ViewLight&, Image&, TissueMesh&) { c.fov_y_deg = 0; }, "fov_y_deg is 0;"},
+      {[](ViewCamera& c, ViewLight&, Image&, TissueMesh&) { c.fov_y_deg = 180; }, "fov_y_deg is 180;"},
       {[](ViewCamera& c, ViewLight&, Image&, TissueMesh&) { c.fov_y_deg = NAN; }, "fov_y_deg is nan"},
       {[](ViewCamera& c, ViewLight&, Image&, TissueMesh&) { c.width_px = 0; }, "width_px and height_px must be 1 to 16384"},
       {[](ViewCamera& c, ViewLight&, Image&, TissueMesh&) { c.height_px = 16385; }, "16 x 16385 pixels"},
-      {[](ViewCamera& c, ViewLight&, Image&, TissueMesh&) { c.near_mm = 0; }, "near_mm is 0.000000"},
+      {[](ViewCamera& c, ViewLight&, Image&, TissueMesh&) { c.near_mm = 0; }, "near_mm is 0;"},
       {[](ViewCamera& c, ViewLight&, Image&, TissueMesh&) { c.eye_mm.x() = INFINITY; }, "must be finite"},
       {[](ViewCamera&, ViewLight& l, Image&, TissueMesh&) { l.ambient = 1.5; }, "ambient is 1.500000"},
       {[](ViewCamera&, ViewLight& l, Image&, TissueMesh&) { l.falloff_mm = -1; }, "falloff_mm is -1.000000"},
