@@ -3,12 +3,67 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <utility>
 
 namespace bleedsim {
 namespace {
 
 constexpr int kLeafTriangles = 4;
+// How far outside a triangle's barycentric range a segment's crossing may fall and still count: a
+// crossing on an edge is then found on both of its triangles, never on neither.
+constexpr double kCrossingSlack = 1e-12;
+// How far past its ends, as a fraction of its length, a segment may meet a triangle and still pass
+// through it: a segment that starts or ends on the surface, to rounding, passes through it.
+constexpr double kEndSlack = 1e-9;
+
+// Whether the segment a + t·d, t ∈ [0, 1], meets the box (the slab test), the box grown by a hair so
+// that a segment through its face or edge is not lost to the division's rounding.
+bool segment_meets_box(const Eigen::Vector3d& a, const Eigen::Vector3d& d, const Eigen::AlignedBox3d& box) {
+  const double pad = 1e-9 * (1.0 + box.diagonal().norm());
+  double t0 = 0.0, t1 = 1.0;
+  for (int k = 0; k < 3; ++k) {
+    const double lo = box.min()[k] - pad, hi = box.max()[k] + pad;
+    if (d[k] == 0.0) {
+      if (a[k] < lo || a[k] > hi) return false;
+      continue;
+    }
+    double near = (lo - a[k]) / d[k], far = (hi - a[k]) / d[k];
+    if (near > far) std::swap(near, far);
+    t0 = std::max(t0, near);
+    t1 = std::min(t1, far);
+    if (t0 > t1) return false;
+  }
+  return true;
+}
+
+// Where the segment a + t·d, t ∈ [0, 1], passes through triangle pqr (Möller & Trumbore), if it does.
+std::optional<SegmentCrossing> segment_through_triangle(const Eigen::Vector3d& a, const Eigen::Vector3d& d,
+                                                        const Eigen::Vector3d& p, const Eigen::Vector3d& q,
+                                                        const Eigen::Vector3d& r) {
+  const Eigen::Vector3d e1 = q - p, e2 = r - p;
+  const Eigen::Vector3d pvec = d.cross(e2);
+  const double det = e1.dot(pvec);
+  // Edge-on (the segment parallel to the triangle's plane, to rounding): it does not pass through.
+  if (std::fabs(det) <= 1e-14 * e1.norm() * e2.norm() * d.norm()) return std::nullopt;
+  const Eigen::Vector3d s = a - p;
+  const double u = s.dot(pvec) / det;
+  if (u < -kCrossingSlack || u > 1 + kCrossingSlack) return std::nullopt;
+  const Eigen::Vector3d qvec = s.cross(e1);
+  const double v = d.dot(qvec) / det;
+  if (v < -kCrossingSlack || u + v > 1 + kCrossingSlack) return std::nullopt;
+  const double t = e2.dot(qvec) / det;
+  if (t < -kEndSlack || t > 1 + kEndSlack) return std::nullopt;
+  // The weights, within the slack of the range, clamped into it.
+  Eigen::Vector3d w(1 - u - v, u, v);
+  w = w.cwiseMax(0.0);
+  w /= w.sum();
+  SegmentCrossing crossing;
+  crossing.t = std::clamp(t, 0.0, 1.0);
+  crossing.at.barycentric = w;
+  crossing.at.point = w[0] * p + w[1] * q + w[2] * r;
+  return crossing;
+}
 
 }  // namespace
 
@@ -113,6 +168,38 @@ SurfacePoint MeshSurface::closest(const Eigen::Vector3d& p) const {
   }
   best.distance_mm = std::sqrt(best_sq);
   return best;
+}
+
+std::vector<SegmentCrossing> MeshSurface::crossings(const Eigen::Vector3d& a, const Eigen::Vector3d& b) const {
+  std::vector<SegmentCrossing> found;
+  if (nodes_.empty()) return found;
+  const Eigen::Vector3d d = b - a;
+  std::vector<int> stack{0};
+  while (!stack.empty()) {
+    const Node& node = nodes_[stack.back()];
+    stack.pop_back();
+    if (!segment_meets_box(a, d, node.box)) continue;
+    if (node.left >= 0) {
+      stack.push_back(node.left);
+      stack.push_back(node.right);
+      continue;
+    }
+    for (int i = node.first; i < node.first + node.count; ++i) {
+      const int t = order_[i];
+      const auto& c = mesh_.triangles[t].corner;
+      if (auto crossing = segment_through_triangle(a, d, mesh_.positions[c[0]], mesh_.positions[c[1]],
+                                                   mesh_.positions[c[2]])) {
+        crossing->at.triangle = t;
+        found.push_back(*crossing);
+      }
+    }
+  }
+  // Nearest a first; of crossings at the same parameter, the lowest triangle first (the traversal's
+  // order is the tree's, not the answer's).
+  std::sort(found.begin(), found.end(), [](const SegmentCrossing& x, const SegmentCrossing& y) {
+    return x.t < y.t || (x.t == y.t && x.at.triangle < y.at.triangle);
+  });
+  return found;
 }
 
 Eigen::Vector2d MeshSurface::uv(const SurfacePoint& at) const {

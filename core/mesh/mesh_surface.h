@@ -25,6 +25,13 @@ struct SurfacePoint {
   double distance_mm = 0.0;
 };
 
+// Where a segment passes through the surface: the segment's parameter (0 at its start, 1 at its end)
+// and the point of the triangle it passes through (distance_mm 0).
+struct SegmentCrossing {
+  double t = 0.0;
+  SurfacePoint at;
+};
+
 class MeshSurface {
  public:
   explicit MeshSurface(TissueMesh mesh);
@@ -34,6 +41,12 @@ class MeshSurface {
   // The texture coordinate at a point of the surface: its triangle's uvs weighted by its barycentric
   // coordinates.
   Eigen::Vector2d uv(const SurfacePoint& at) const;
+  // Every triangle the segment from a to b passes through, nearest a first (ties by triangle
+  // index). A segment that meets a triangle only edge-on (lying in its plane) does not pass through
+  // it. A crossing on an edge or corner within 1e-12 of the barycentric range counts for each
+  // triangle there, so that no crossing slips between two triangles by rounding; likewise a segment
+  // that starts or ends on a triangle (within 1e-9 of its length) passes through it.
+  std::vector<SegmentCrossing> crossings(const Eigen::Vector3d& a, const Eigen::Vector3d& b) const;
 
   const TissueMesh& mesh() const { return mesh_; }
 

@@ -59,6 +59,59 @@ TEST(MeshSurface, TheHierarchyFindsWhatEveryTriangleWouldGive) {
   }
 }
 
+// The segment queries through the hierarchy against every triangle's, each found independently:
+// where the segment meets the triangle's plane, and whether that point is inside the triangle (the
+// same side of all three edges). Random segments on the turbinate meet no edge to within 1e-9 of
+// the barycentric range, where the two could disagree.
+TEST(MeshSurface, TheSegmentQueryFindsEveryTriangleItPassesThrough) {
+  const MeshSurface surface(load_tissue_mesh(test::source_dir() + "/scenarios/meshes/turbinate.obj"));
+  const TissueMesh& mesh = surface.mesh();
+  std::mt19937 random(5);
+  std::uniform_real_distribution<double> x(-5, 45), yz(-15, 10);
+  int found = 0;
+  for (int trial = 0; trial < 300; ++trial) {
+    const Eigen::Vector3d a(x(random), yz(random), yz(random)), b(x(random), yz(random), yz(random));
+    std::vector<std::pair<double, int>> expected;
+    for (std::size_t t = 0; t < mesh.triangles.size(); ++t) {
+      const auto& c = mesh.triangles[t].corner;
+      const Eigen::Vector3d &p = mesh.positions[c[0]], &q = mesh.positions[c[1]], &r = mesh.positions[c[2]];
+      const Eigen::Vector3d n = (q - p).cross(r - p);
+      const double along = n.dot(b - a);
+      if (along == 0) continue;
+      const double s = n.dot(p - a) / along;
+      if (s < 0 || s > 1) continue;
+      const Eigen::Vector3d at = a + s * (b - a);
+      if (n.dot((q - p).cross(at - p)) >= 0 && n.dot((r - q).cross(at - q)) >= 0 && n.dot((p - r).cross(at - r)) >= 0)
+        expected.emplace_back(s, int(t));
+    }
+    std::sort(expected.begin(), expected.end());
+    const std::vector<SegmentCrossing> got = surface.crossings(a, b);
+    ASSERT_EQ(got.size(), expected.size()) << "trial " << trial;
+    for (std::size_t i = 0; i < got.size(); ++i) {
+      ASSERT_EQ(got[i].at.triangle, expected[i].second) << "trial " << trial;
+      ASSERT_NEAR(got[i].t, expected[i].first, 1e-12) << "trial " << trial;
+      const auto& c = mesh.triangles[got[i].at.triangle].corner;
+      const Eigen::Vector3d& w = got[i].at.barycentric;
+      const Eigen::Vector3d on = w[0] * mesh.positions[c[0]] + w[1] * mesh.positions[c[1]] + w[2] * mesh.positions[c[2]];
+      ASSERT_NEAR((on - (a + got[i].t * (b - a))).norm(), 0.0, 1e-9) << "trial " << trial;
+    }
+    found += int(got.size());
+  }
+  EXPECT_GT(found, 100);  // the segments do cross the sheet, often several times
+}
+
+// On the flat panel a segment through its diagonal, the edge its two triangles share, passes through
+// both; one that starts or ends on it passes through it; one lying in it does not.
+TEST(MeshSurface, ASegmentThroughAnEdgeOrFromTheSurfacePassesThroughIt) {
+  const MeshSurface surface(load_tissue_mesh(test::source_dir() + "/scenarios/meshes/flat-panel.obj"));
+  EXPECT_EQ(surface.crossings({16, -12, 1}, {16, -12, -1}).size(), 2u);  // (16, −12) is on the diagonal
+  EXPECT_EQ(surface.crossings({5, -20, 0}, {5, -20, -1}).size(), 1u);
+  EXPECT_EQ(surface.crossings({5, -20, 1}, {5, -20, 0}).size(), 1u);
+  EXPECT_EQ(surface.crossings({5, -20, 0}, {9, -20, 0}).size(), 0u);
+  EXPECT_EQ(surface.crossings({5, -20, 1}, {5, -20, 0.5}).size(), 0u);
+  EXPECT_EQ(surface.crossings({40, -20, 1}, {40, -20, -1}).size(), 0u);  // past the panel's edge
+}
+
 // A point off the patch at height z (inside its height) lands on the facet nearest to it seen from
 // above, a 2D question: the facet k whose chord AB (its edges at θk, θk+1) is nearest, at the
 // chord's parameter t = clamp((P − A)·(B − A) / |B − A|², 0, 1); its uv is ((k + t) / n, z / h)
