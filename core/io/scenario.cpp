@@ -448,7 +448,6 @@ TissueFile read_tissue_table(Reader& r, const toml::table& root, Scenario& s) {
 
 void read_tissue(const TissueFile& tissue, Scenario& s, ReadTissue how) {
   Scene& scene = s.scene;
-  const auto beside_the_scenario = [&](const std::string& name) { return beside(s, name); };
   MemoryParts parts = Pipeline::memory(scene);
   parts.push_back(scene.domain.memory(4));
   const SourcePlace texture_place = s.place_of("tissue.texture"), map_place = s.place_of("vessels.map");
@@ -459,7 +458,7 @@ void read_tissue(const TissueFile& tissue, Scenario& s, ReadTissue how) {
                      "name a PNG map of its vessels"));
   scene.tissue_source = "procedural";
   if (!tissue.texture.empty()) {
-    scene.tissue_source = beside_the_scenario(tissue.texture);
+    scene.tissue_source = beside(s, tissue.texture);
     parts.push_back(texture_memory(read_tissue_png_header(scene.tissue_source, texture_place, "tissue.texture"),
                                    "tissue.texture"));
   }
@@ -468,7 +467,7 @@ void read_tissue(const TissueFile& tissue, Scenario& s, ReadTissue how) {
   if (scene.vessels) {
     parts.push_back({"vessels.map", "the vessel density map", scene.domain.pixels() * Count(sizeof(float))});
     if (!procedural_vessels) {
-      map_file = beside_the_scenario(scene.vessels->map);
+      map_file = beside(s, scene.vessels->map);
       parts.push_back(texture_memory(read_tissue_png_header(map_file, map_place, "vessels.map"), "vessels.map"));
     }
   }
