@@ -49,7 +49,8 @@ MeshContact::MeshContact(const MeshSurface& surface, const HapticParams& params)
     : surface_(surface),
       stiffness_N_per_m_(params.stiffness_N_per_m),
       damping_Ns_per_m_(params.damping_Ns_per_m),
-      max_force_N_(params.max_force_N) {
+      max_force_N_(params.max_force_N),
+      device_damping_Ns_per_m_(params.device_damping_Ns_per_m) {
   if (const ParamProblem problem = passivity_problem(params)) throw std::invalid_argument(problem.text());
   const TissueMesh& mesh = surface.mesh();
   const int triangles = int(mesh.triangles.size());
@@ -297,22 +298,28 @@ MeshTouch MeshContact::touch(const Eigen::Vector3d& x) {
 
   // In contact while the device is behind the proxy's tangent plane. The force along the shading
   // normal: a spring on the penetration and a damper on the tip's speed along the normal (a backward
-  // difference over one tick), pushing, never pulling, and no more than the device can.
+  // difference over one tick), pushing, never pulling, and no more than the device can; then no more
+  // than the energy bound allows (the header's last block).
   if (found && found->penetration_mm > 0) {
+    const Eigen::Vector3d step_m = previous_mm_ ? Eigen::Vector3d((x - *previous_mm_) / 1000.0) : Eigen::Vector3d::Zero();
+    reserve_J_ += device_damping_Ns_per_m_ * step_m.squaredNorm() / kHapticPeriod_s - held_N_.dot(step_m);
     touch.contact = true;
     touch.proxy = found->at;
     touch.penetration_mm = found->penetration_mm;
     touch.beyond_edge_mm = found->beyond_mm;
     touch.normal = found->normal;
-    const double normal_speed_m_s =
-        previous_mm_ ? found->normal.dot(x - *previous_mm_) / 1000.0 / kHapticPeriod_s : 0.0;
+    touch.reserve_J = reserve_J_;
+    const double normal_speed_m_s = found->normal.dot(step_m) / kHapticPeriod_s;
     const double push_N =
         stiffness_N_per_m_ * found->penetration_mm / 1000.0 - damping_Ns_per_m_ * normal_speed_m_s;
-    touch.force_N = std::clamp(push_N, 0.0, max_force_N_) * found->normal;
+    const double bound_N = std::sqrt(std::max(0.0, 4.0 * device_damping_Ns_per_m_ * reserve_J_ / kHapticPeriod_s));
+    touch.force_N = std::min({std::max(push_N, 0.0), max_force_N_, bound_N}) * found->normal;
     proxy_ = found->at;
   } else {
     proxy_.reset();
+    reserve_J_ = 0.0;
   }
+  held_N_ = touch.force_N;
   previous_mm_ = x;
   return touch;
 }

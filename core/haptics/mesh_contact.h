@@ -30,6 +30,15 @@
 //   the same bound (Colgate & Schenkel); but force shading's field is not conservative: around a loop
 //   it does ∮ k·h·n·dP, up to k·h·sin τ a mm of the proxy's path (τ the shading's tilt from the
 //   facet), whatever the speed — docs/haptics.md gives the figures.
+// - So the force is bounded by the energy the contact has taken in (energy bounding, Kim & Ryu 2004).
+//   Over a contact, the reserve R = D − W is what the device's own damping B has dissipated,
+//   D = Σ B·|Δx|²/T, less the work the held forces have done on the device, W = Σ F·Δx. Whatever the
+//   hand does in the coming tick, holding F changes R by B·|Δx|²/T − F·Δx ≥ −T·|F|²/(4B) (the
+//   quadratic's least value), so |F| ≤ √(4B·R/T) keeps R ≥ 0: W ≤ D at every tick of every contact,
+//   which is passivity with the device's damping (Colgate & Schenkel's condition, here for any field).
+//   A conservative field never meets the bound under that condition (the flat panel's plane does not;
+//   test 1 of tests/haptics/mesh_contact_test.cpp); force shading meets it only where it would return
+//   energy.
 #include <array>
 #include <optional>
 #include <vector>
@@ -52,12 +61,15 @@ struct MeshTouch {
   double beyond_edge_mm = 0.0;   // how far past the mesh's boundary, in its tangent plane (0 over it)
   Eigen::Vector3d normal = Eigen::Vector3d::Zero();   // n at the proxy, unit (zero out of contact)
   Eigen::Vector3d force_N = Eigen::Vector3d::Zero();  // on the device, device frame
+  // The energy bound's reserve R = D − W over this contact up to this tick, J (0 out of contact);
+  // |force_N| ≤ √(4B·R/T).
+  double reserve_J = 0.0;
 };
 
 class MeshContact {
  public:
   // Keeps a reference to `surface`, which must outlive the contact, and the contact parameters of
-  // `params` (stiffness_N_per_m, damping_Ns_per_m, max_force_N). Throws std::invalid_argument when
+  // `params` (stiffness_N_per_m, damping_Ns_per_m, max_force_N, device_damping_Ns_per_m). Throws std::invalid_argument when
   // they are not passive at 1 kHz (passivity_problem).
   MeshContact(const MeshSurface& surface, const HapticParams& params);
 
@@ -84,7 +96,7 @@ class MeshContact {
   const Eigen::Vector3d& corner_normal(int triangle, int k) const;
 
   const MeshSurface& surface_;
-  double stiffness_N_per_m_, damping_Ns_per_m_, max_force_N_;
+  double stiffness_N_per_m_, damping_Ns_per_m_, max_force_N_, device_damping_Ns_per_m_;
   std::vector<Eigen::Vector3d> face_normals_;
   std::vector<Eigen::Vector3d> vertex_normals_;
   std::vector<std::array<int, 3>> neighbours_;  // across the edge opposite each corner; −1 on the boundary
@@ -92,6 +104,8 @@ class MeshContact {
 
   std::optional<Eigen::Vector3d> previous_mm_;  // the device at the last tick
   std::optional<SurfacePoint> proxy_;           // the proxy while in contact
+  double reserve_J_ = 0.0;                       // the energy bound's R, this contact so far
+  Eigen::Vector3d held_N_ = Eigen::Vector3d::Zero();  // the force sent at the last tick
 };
 
 }  // namespace bleedsim
