@@ -23,9 +23,11 @@ namespace {
 // haptic loop alone is cheap: no frame is computed).
 std::int64_t describe_haptics(const Scene& scene) {
   const HapticParams& h = *scene.haptics;
-  std::printf("  haptics    surface z = %g mm; k %g N/m, b %g N·s/m, cap %g N; passive: k·T/2 + |b| = %g < %g N·s/m\n",
-              h.surface_z_mm, h.stiffness_N_per_m, h.damping_Ns_per_m, h.max_force_N,
-              passivity_demand_Ns_per_m(h), h.device_damping_Ns_per_m);
+  const std::string tissue = scene.mesh ? "the tissue mesh (a proxy on its surface, force bounded by energy)"
+                                         : "surface z = " + format_number(h.surface_z_mm) + " mm";
+  std::printf("  haptics    %s; k %g N/m, b %g N·s/m, cap %g N; passive: k·T/2 + |b| = %g < %g N·s/m\n", tissue.c_str(),
+              h.stiffness_N_per_m, h.damping_Ns_per_m, h.max_force_N, passivity_demand_Ns_per_m(h),
+              h.device_damping_Ns_per_m);
   const Trace& trace = *scene.trace;
   HapticLoop loop(scene);
   const std::int64_t ticks = scene.haptic_ticks_through_frame(scene.frame_count() - 1);

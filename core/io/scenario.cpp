@@ -387,7 +387,7 @@ void read_haptics(Reader& r, const toml::table& root, Scenario& s) {
 }
 
 // A tissue mesh places the tissue in the device frame itself, so the flat panel's placement under
-// the stylus is not the scene's to give; and the instrument's tip does not yet act on a mesh.
+// the stylus is not the scene's to give; and suction and contact do not yet act on a mesh.
 void refuse_what_a_mesh_replaces(const Scenario& s) {
   for (const char* key : {"haptics.surface_z_mm", "haptics.panel_origin_mm", "haptics.scale"})
     if (s.places.count(key))
@@ -399,12 +399,6 @@ void refuse_what_a_mesh_replaces(const Scenario& s) {
       throw InputError(s.place_of(table), table,
                        std::string("the instrument's ") + table + " acts on the flat panel only; a scene with "
                        "tissue.mesh cannot have it yet");
-  // The stylus' contact with a mesh (core/haptics/mesh_contact.h) is not in the haptic loop yet: a
-  // trace would touch the flat panel's plane, not the mesh.
-  if (s.places.count("haptics"))
-    throw InputError(s.place_of("haptics"), "haptics",
-                     "the stylus touches the flat panel only for now; a scene with tissue.mesh cannot replay a "
-                     "trace yet");
 }
 
 // The tissue comes last: it is the one large allocation, made only once the scene is known to fit:

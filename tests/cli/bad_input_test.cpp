@@ -126,8 +126,6 @@ TEST_F(BadInput, AMeshsPlacementWithoutAMeshOrThePanelsPlacementWithOne) {
   const std::string trace = source_dir() + "/scenarios/traces/single-stroke.csv";
   expect_refused(scenario_with("", "[haptics]\ntrace = \"" + trace + "\"\nsurface_z_mm = 100\n[tissue]\nmesh = \"panel.obj\"\n"),
                  {"bad.toml:13:", "haptics.surface_z_mm: places the flat panel under the stylus"});
-  expect_refused(scenario_with("", "[haptics]\ntrace = \"" + trace + "\"\n[tissue]\nmesh = \"panel.obj\"\n"),
-                 {"bad.toml:11:1: haptics: the stylus touches the flat panel only for now"});
   expect_refused(scenario_with("", "[tissue]\nmesh = \"panel.obj\"\n[view]\neye_mm = [0, 0, 100]\nlook_at_mm = [0, 0, 50]\n"
                                    "up = [0, 0, 1]\n"),
                  {"bad.toml:15:14: view.look_at_mm: view camera: up [0, 0, 1] is parallel to the view direction [0, 0, -1]"});
