@@ -45,23 +45,34 @@ std::string face_name(std::size_t f) { return "face " + std::to_string(f + 1); }
 // groups, materials and the like mean nothing here, and tinyobjloader's extensions are not all
 // safe on any input (its `vw` weights convert an unchecked float to int: the mesh fuzzer's find).
 // Lines end at \n, \r\n or a lone \r, as the reader's do.
-std::string geometry_only(const std::string& text) {
-  std::string kept;
-  kept.reserve(text.size());
+struct Geometry {
+  std::string text;          // the v, vt, vn and f lines; every other line left empty
+  std::size_t triangles = 0; // what the f lines fan into: corners − 2 each
+};
+
+Geometry geometry_only(const std::string& text) {
+  Geometry g;
+  g.text.reserve(text.size());
   std::size_t start = 0;
+  const auto blank = [&](std::size_t i) { return text[i] == ' ' || text[i] == '\t'; };
   while (start < text.size()) {
     std::size_t end = text.find_first_of("\r\n", start);
     if (end == std::string::npos) end = text.size();
     std::size_t word = start;
-    while (word < end && (text[word] == ' ' || text[word] == '\t')) ++word;
+    while (word < end && blank(word)) ++word;
     std::size_t word_end = word;
-    while (word_end < end && text[word_end] != ' ' && text[word_end] != '\t') ++word_end;
+    while (word_end < end && !blank(word_end)) ++word_end;
     const std::string keyword = text.substr(word, word_end - word);
-    if (keyword == "v" || keyword == "vt" || keyword == "vn" || keyword == "f") kept.append(text, start, end - start);
-    kept += '\n';
+    if (keyword == "v" || keyword == "vt" || keyword == "vn" || keyword == "f") g.text.append(text, start, end - start);
+    if (keyword == "f") {
+      std::size_t corners = 0;
+      for (std::size_t i = word_end; i < end; ++i) corners += !blank(i) && blank(i - 1);
+      if (corners >= 3) g.triangles += corners - 2;
+    }
+    g.text += '\n';
     start = end + (text.compare(end, 2, "\r\n") == 0 ? 2 : 1);
   }
-  return kept;
+  return g;
 }
 
 }  // namespace
@@ -78,9 +89,14 @@ TissueMesh parse_tissue_mesh(const std::string& text, const std::string& path, c
   tinyobj::ObjReaderConfig config;
   config.triangulate = true;  // polygons as fans of triangles
   config.vertex_color = false;
+  // The budget before tinyobjloader holds the faces in memory: a file's triangles are counted first.
+  const Geometry geometry = geometry_only(text);
+  if (geometry.triangles > budget.triangles)
+    fail("the mesh has " + std::to_string(geometry.triangles) + " triangles, more than the " +
+         std::to_string(budget.triangles) + " a mesh may have");
   tinyobj::ObjReader reader;
   // No material file: a tissue mesh's colour is its bleeding texture, and nothing else is read.
-  if (!reader.ParseFromString(geometry_only(text), "", config)) {
+  if (!reader.ParseFromString(geometry.text, "", config)) {
     std::string why = reader.Error();
     while (!why.empty() && std::isspace(static_cast<unsigned char>(why.back()))) why.pop_back();
     fail("not a readable OBJ mesh: " + (why.empty() ? std::string("no reason given") : why));
@@ -100,9 +116,6 @@ TissueMesh parse_tissue_mesh(const std::string& text, const std::string& path, c
   std::size_t faces = 0;
   for (const tinyobj::shape_t& shape : reader.GetShapes()) faces += shape.mesh.num_face_vertices.size();
   if (faces == 0) fail("the mesh has no faces (f lines)");
-  if (faces > budget.triangles)
-    fail("the mesh has " + std::to_string(faces) + " triangles, more than the " + std::to_string(budget.triangles) +
-         " a mesh may have");
 
   for (const tinyobj::shape_t& shape : reader.GetShapes()) {
     for (std::size_t f = 0; f < shape.mesh.num_face_vertices.size(); ++f) {

@@ -117,6 +117,17 @@ TEST_F(BadInput, ABadTissueMeshNamesItsFileAndTheProblem) {
   expect_refused(scenario_with("", "[tissue]\nmesh = \"fan.obj\"\n"), {"fan.obj", "borders 3 faces", "non-manifold"});
 }
 
+// Millions of triangles past the reader's budget (4,194,304, core/io/mesh_obj.h) are refused by
+// their count, before tinyobjloader holds them: one polygon of 4,194,307 corners fans into 4,194,305.
+TEST_F(BadInput, AMeshOfMillionsOfTrianglesPastTheBudget) {
+  std::string huge = "v 0 0 0\nv 16 0 0\nv 16 -12 0\nvt 0 0\nvt 1 0\nvt 1 1\nf";
+  huge.reserve(huge.size() + 4 * 4194307 + 1);
+  for (int corner = 0; corner < 4194307; ++corner) huge += " 1/1";
+  write_text(dir_ / "huge.obj", huge + "\n");
+  expect_refused(scenario_with("", "[tissue]\nmesh = \"huge.obj\"\n"),
+                 {"huge.obj", "tissue.mesh", "the mesh has 4194305 triangles, more than the 4194304 a mesh may have"});
+}
+
 TEST_F(BadInput, AMeshsPlacementWithoutAMeshOrThePanelsPlacementWithOne) {
   expect_refused(scenario_with("", "[tissue]\nmesh_scale = 2\n"),
                  {"bad.toml:12:", "tissue.mesh_scale: places a tissue mesh, and this scene names none"});
