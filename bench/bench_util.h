@@ -38,4 +38,7 @@ void release_frame_benchmarks();
 // bench/haptic_bench.cpp: the haptic tick, and a trace-driven run's tick and frame percentiles.
 void register_haptic_benchmarks();
 
+// bench/spread_bench.cpp: a frame's spread against the number of cuts made, most of them settled.
+void register_spread_benchmarks();
+
 }  // namespace bleedsim

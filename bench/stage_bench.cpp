@@ -109,6 +109,7 @@ int main(int argc, char** argv) {
   bleedsim::register_particle_benchmarks();
   bleedsim::register_frame_benchmarks();
   bleedsim::register_haptic_benchmarks();
+  bleedsim::register_spread_benchmarks();
   benchmark::RunSpecifiedBenchmarks();
   bleedsim::release_particle_benchmarks();
   bleedsim::release_frame_benchmarks();

@@ -11,6 +11,7 @@
 
 #define BLEEDSIM_PIXEL_KERNELS(X) \
   X(SpreadPixel)                  \
+  X(SpreadSettle)                 \
   X(BlendPixel)                   \
   X(BlurDownsample)               \
   X(BlurGaussian)                 \

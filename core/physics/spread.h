@@ -49,16 +49,22 @@ BLEEDSIM_HD inline float cut_stain(const SpreadCut& cut, float x_mm, float y_mm,
   return stain_profile(sqrtf(dx * dx + dy * dy), cut.radius_mm) * cut.amplitude;
 }
 
-// The combined stain of every cut at pixel (i, j).
-BLEEDSIM_HD inline float spread_stain(const SpreadCut* cuts, int cut_count, const PixelGrid& grid,
-                                      int i, int j, const SurfaceMap& surface = {}) {
+// The light left at pixel (i, j) after `light_left` (from the cuts before these) and then each of
+// these cuts' stains in order: light_left · Π(1 − sᵢ), one product at a time.
+BLEEDSIM_HD inline float light_through(const SpreadCut* cuts, int cut_count, const PixelGrid& grid, int i, int j,
+                                       const SurfaceMap& surface, float light_left) {
   const float x = pixel_centre_x_mm(grid, i);
   const float y = pixel_centre_y_mm(grid, j);
   const SurfaceFrame frame = curved(surface) ? frame_of(surface, std::size_t(j) * grid.width + i) : SurfaceFrame{};
   const SurfaceFrame* on = curved(surface) ? &frame : nullptr;
-  float light_left = 1.0f;
   for (int c = 0; c < cut_count; ++c) light_left *= 1.0f - cut_stain(cuts[c], x, y, on);
-  return 1.0f - light_left;
+  return light_left;
+}
+
+// The combined stain of every cut at pixel (i, j).
+BLEEDSIM_HD inline float spread_stain(const SpreadCut* cuts, int cut_count, const PixelGrid& grid,
+                                      int i, int j, const SurfaceMap& surface = {}) {
+  return 1.0f - light_through(cuts, cut_count, grid, i, j, surface, 1.0f);
 }
 
 // How far a cut's stain has grown at time t: 0 before it starts, then linear at growth_per_s
@@ -69,17 +75,41 @@ inline float cut_amplitude(double start_s, double growth_per_s, double t_s) {
 }
 
 // The stage's work, pixel by pixel: the stain of one frame's cuts (core/physics/pixel_kernels.h runs it).
+// With `settled`, the light the cuts before these (whose stains no longer change) let through,
+// from SpreadSettle: the same products in the same order as from every cut, so the same bytes.
 struct SpreadPixel {
   const SpreadCut* cuts;
   int cut_count;
   PixelGrid grid;
   float* stain;  // grid.width × grid.height, row-major
   SurfaceMap surface = {};  // a tissue mesh's maps; empty on the flat panel
+  const float* settled = nullptr;  // grid.width × grid.height, or none: 1 everywhere
 
   BLEEDSIM_HD int width() const { return grid.width; }
   BLEEDSIM_HD int height() const { return grid.height; }
   BLEEDSIM_HD void operator()(int i, int j) const {
-    stain[std::size_t(j) * grid.width + i] = spread_stain(cuts, cut_count, grid, i, j, surface);
+    const std::size_t p = std::size_t(j) * grid.width + i;
+    stain[p] = 1.0f - light_through(cuts, cut_count, grid, i, j, surface, settled ? settled[p] : 1.0f);
+  }
+};
+
+// Cuts whose stains no longer change, folded once into the light they let through, cut by cut in
+// order, over a box of pixels that holds every pixel they stain (outside it each would multiply by
+// 1 − 0, which changes nothing). A frame then costs its live cuts, not every cut ever made.
+struct SpreadSettle {
+  const SpreadCut* cuts;
+  int cut_count;
+  PixelGrid grid;
+  float* settled;  // grid.width × grid.height
+  SurfaceMap surface;
+  int first_i, first_j, box_width, box_height;
+
+  BLEEDSIM_HD int width() const { return box_width; }
+  BLEEDSIM_HD int height() const { return box_height; }
+  BLEEDSIM_HD void operator()(int i, int j) const {
+    const int x = first_i + i, y = first_j + j;
+    float& light = settled[std::size_t(y) * grid.width + x];
+    light = light_through(cuts, cut_count, grid, x, y, surface, light);
   }
 };
 
