@@ -44,8 +44,15 @@ rounding:
   over the sub-steps k it was on, and no residue within its reach of its path; with [contact], no
   live centre within the tip's body at a key frame that ends with the tip on the tissue.
 
+- for scenes on a tissue mesh (docs/mesh.md), the surface maps recomputed from the OBJ file and the
+  scenario's placement; the haptic channel against the mesh (the proxy on it with the tip behind it
+  along the shading normal, force shading under the energy bound, the cuts spaced on the surface);
+  the stain with distances on the surface; the particles on the surface, and the film by its reach
+  and its volume on the surface (golden_mesh.py says what it leaves to the C++ tests).
+
 The particles' checks (accounting, live slots, film, blur) live in golden_film.py beside this file,
-the haptics' in golden_haptics.py, the vessels', pulse's and instrument's in golden_bleeding.py.
+the haptics' in golden_haptics.py, the mesh's in golden_mesh.py, the vessels', pulse's and
+instrument's in golden_bleeding.py.
 
 Run: /usr/bin/python3 tests/golden/check_goldens.py [repo root] [--golden-dir DIR]
 (DIR defaults to <repo root>/golden; the scenarios are always <repo root>/scenarios/golden.)
@@ -62,6 +69,7 @@ from golden_bleeding import (check_contact, describe_wounds, suction_quota, suct
                              with_vessels)
 from golden_film import check_blur, check_particles, particle_settings, pixel_centres
 from golden_haptics import check_haptics
+from golden_mesh import check_maps, device_gravity, read_mesh, surface_maps
 from scenario_defaults import defaults, fill_cut, load_params, read_scenario
 
 STAIN_TOLERANCE = 2e-6   # float32 arithmetic in the reference, float64 here ...
@@ -121,7 +129,9 @@ def scene_tissue(root, scenario):
     return image if image.shape[:2] == (scene["height_px"], scene["width_px"]) else None
 
 
-def expected_stain(scenario, t):
+def expected_stain(scenario, t, frame=None):
+    """The report's stains combined; on a mesh, distances on the surface through each pixel's frame
+    (a, b, c): (a·dx + b·dy, c·dy)."""
     scene = scenario["scene"]
     x, y = pixel_centres(scene)
     xx, yy = np.meshgrid(x, y)
@@ -129,7 +139,10 @@ def expected_stain(scenario, t):
     for cut in scenario["cut"]:
         r, growth = cut["radius_mm"], cut["growth_per_s"]
         amplitude = np.clip((t - cut["start_s"]) * growth, 0.0, 1.0)
-        d = np.hypot(xx - cut["x_mm"], yy - cut["y_mm"])
+        dx, dy = xx - cut["x_mm"], yy - cut["y_mm"]
+        if frame is not None:
+            dx, dy = frame[..., 0] * dx + frame[..., 1] * dy, frame[..., 2] * dy
+        d = np.hypot(dx, dy)
         final = np.where(d < r, ((r - d) / r) ** 6, 0.0)   # the report's profile
         light_left *= 1.0 - amplitude * final
     return 1.0 - light_left
@@ -194,9 +207,18 @@ def check_scene(root, golden, name, params):
         if keys != wanted_keys:
             problems.append(f"key frames {keys}, expected {wanted_keys}")
         frames, times = f["frame"][:], f["time"][:]
-        channel = None
+        channel = mesh = frame = None
+        if scenario["tissue"]["mesh"]:   # the texture on a mesh: its maps from the OBJ
+            mesh = read_mesh(root, scenario)
+            frames_of, tangential, surely, maybe = surface_maps(mesh, scenario["scene"],
+                                                                device_gravity(scenario, defaults(params, "particles")))
+            if "surface/frame" not in f or "surface/gravity" not in f:
+                problems.append("a mesh scene's keyframes.h5 has no surface/frame and surface/gravity")
+                return problems, notes
+            check_maps(f, frames_of, tangential, surely, maybe, problems, notes)
+            frame = f["surface/frame"][0].astype(np.float64)   # as checked: the pixels' frames the stages read
         if "haptics" in scenario:   # the stylus' cuts follow the scripted ones, as in the run
-            cuts, channel = check_haptics(root, scenario, f, expected_frames, problems, notes)
+            cuts, channel = check_haptics(root, scenario, f, expected_frames, problems, notes, mesh)
             scenario["cut"] += [fill_cut(cut, scenario, params) for cut in cuts]
         try:
             density = vessel_map(root, scenario)
@@ -217,7 +239,8 @@ def check_scene(root, golden, name, params):
         has_spread, has_particles = "spread" in scenario, "particles" in scenario
         has_blur = has_particles and "blur" in scenario   # the parser refuses [blur] without [particles]
         has_trail = has_particles and "trail" in scenario
-        wanted_fields = ((["spread/stain"] if has_spread else []) +
+        wanted_fields = ((["surface/frame", "surface/gravity"] if mesh is not None else []) +
+                         (["spread/stain"] if has_spread else []) +
                          (["particles/position", "particles/velocity", "particles/age", "particles/accounting",
                            "splat/thickness"] if has_particles else []) +
                          (["blur/thickness"] if has_blur else []) + (["trail/residue"] if has_trail else []) +
@@ -228,7 +251,7 @@ def check_scene(root, golden, name, params):
                             f"effects make ({' '.join(wanted_fields)})")
             return problems, notes
         stains = f["spread/stain"][:] if has_spread else np.zeros(frames.shape[:3], dtype=np.float32)
-        splats = (check_particles(scenario, f, keys, problems, notes, quota) if has_particles
+        splats = (check_particles(scenario, f, keys, problems, notes, quota, frame) if has_particles
                   else np.zeros(frames.shape[:3], dtype=np.float32))
         if "contact" in scenario and channel is not None:
             check_contact(scenario, channel, keys, f["particles/position"][:], f["particles/age"][:],
@@ -254,7 +277,7 @@ def check_scene(root, golden, name, params):
         t = (k + 1) / fps
         if abs(times[i] - t) > 1e-12:
             problems.append(f"key frame {k}: time {times[i]} s, expected {t} s")
-        error = np.abs(stains[i] - expected_stain(scenario, t)).max() if has_spread else np.abs(stains[i]).max()
+        error = np.abs(stains[i] - expected_stain(scenario, t, frame)).max() if has_spread else np.abs(stains[i]).max()
         if error > STAIN_TOLERANCE + STAIN_TOLERANCE_PER_CUT * len(scenario["cut"]):
             problems.append(f"key frame {k}: stain differs from the report's formula by {error:.3g}")
     optics = scenario.get("optics") or defaults(params, "optics")

@@ -252,9 +252,61 @@ def expected_thickness(settings, scene, position, age):
             "counts": (int(shares.sum()), int(falls_back.sum()), int(either.sum()))}
 
 
-def check_particles(scenario, f, keys, problems, notes, quota=None):
+def check_on_surface(scene, frame, k, p, problems):
+    """Live centres finite, inside the panel, and on texels the mesh covers."""
+    w, h = scene["width_px"], scene["height_px"]
+    finite = np.isfinite(p).all(axis=1)
+    i = np.clip(np.floor(p[finite, 0] / (scene["width_mm"] / w)), 0, w - 1).astype(np.int64)
+    j = np.clip(np.floor(p[finite, 1] / (scene["height_mm"] / h)), 0, h - 1).astype(np.int64)
+    inside = ((p[finite] >= 0) & (p[finite] <= [scene["width_mm"], scene["height_mm"]])).all(axis=1)
+    off = (~finite).sum() + (~inside).sum() + (frame[j, i, 3] == 0).sum()
+    if off:
+        problems.append(f"key frame {k}: {off} live particles lie off the surface or outside the panel")
+
+
+def check_film_on_surface(settings, scene, frame, k, p, age, film, problems):
+    """On a mesh: the film is finite and not negative, lies only within a splat's reach of a live
+    centre or in the pixel holding it (R on the surface is at most R / σ on the panel, σ the frames'
+    least stretch, the least singular value of [[a, b], [0, c]], at least a·c / √(a² + b² + c²)),
+    and holds the live particles' blood: Σ film · pixel area · a·c (the texel's area on the surface)
+    = Σ V · fade, but for rounding."""
+    pixel_area = scene["width_mm"] / scene["width_px"] * scene["height_mm"] / scene["height_px"]
+    if not np.isfinite(film).all() or (film < 0).any():
+        problems.append(f"key frame {k}: the film is negative or not finite somewhere")
+        return
+    a, b, c = frame[..., 0], frame[..., 1], frame[..., 2]
+    # The least singular value of [[a, b], [0, c]]: det / the largest, which is at most the Frobenius norm.
+    least = float((a * c / np.sqrt(a * a + b * b + c * c)).min())
+    reach = settings["splat_radius"] / least + 2 * edge_band_mm(scene)
+    _, pixel, _ = splat_pairs(scene, reach, p[:, 0], p[:, 1])
+    reached = np.zeros(film.size, dtype=bool)
+    reached[pixel] = True
+    holder, _, _ = holding_pixels(scene, p[:, 0], p[:, 1])
+    reached[holder] = True
+    stray = (film.reshape(-1) != 0) & ~reached
+    if stray.any():
+        problems.append(f"key frame {k}: {stray.sum()} pixels hold film further than a splat reaches on the surface")
+    fade = np.minimum(1.0, (settings["lifetime"] - age.astype(np.float64)) / settings["fade"])
+    volume = float((settings["volume"] * fade).sum())
+    held = float((film * a * c).sum() * pixel_area)
+    # As on the panel (check 5): each particle's T is off by half a unit and BLOOD_RELATIVE of itself,
+    # each share by half a unit, at most one share a pixel of its reach's box; film · a·c is the
+    # units again (a·c cancels the stretch), but for float32's roundings of the film in mm, the
+    # division and a·c itself.
+    box = (2.0 * reach / min(scene["width_mm"] / scene["width_px"], scene["height_mm"] / scene["height_px"]) + 3.0) ** 2
+    slack = (0.5 * box + 0.5) * p.shape[0] * SPLAT_UNIT_MM * pixel_area + BLOOD_RELATIVE * volume + 4 * FLOAT32_UNIT * held
+    if not abs(held - volume) <= slack:
+        problems.append(f"key frame {k}: the film holds {held:.9g} mm³ on the surface, the live particles' blood is "
+                        f"{volume:.9g} mm³ (± {slack:.3g})")
+
+
+def check_particles(scenario, f, keys, problems, notes, quota=None, frame=None):
     """Checks 1–5 of the particle state and its film; returns each key frame's film (mm). In a scene
-    with [suction], `quota` is the most it may have taken by the end of each step."""
+    with [suction], `quota` is the most it may have taken by the end of each step. On a tissue mesh,
+    `frame` is the surface's (H, W, 4: a, b, c, on the surface; golden_mesh.surface_maps): centres
+    must lie on the surface, and the film is checked by its reach and its volume on the surface,
+    not recomputed splat by splat (its footprint is an ellipse in the frame of the texel holding each
+    centre, which float32 may put either side of a texel edge)."""
     scene = scenario["scene"]
     settings = particle_settings(scenario)
     capacity, lifetime, r = settings["capacity"], settings["lifetime"], settings["radius"]
@@ -307,8 +359,14 @@ def check_particles(scenario, f, keys, problems, notes, quota=None):
         never = np.arange(capacity) >= emitted
         if (slot_age[never] != NEVER_USED).any() or positions[i][never].any() or velocities[i][never].any():
             problems.append(f"key frame {k}: a slot that never held a particle is not age 2^32-1 at rest at (0, 0)")
-        # 3. Live centres inside the panel less a radius.
+        # 3. Live centres inside the panel less a radius (on a mesh: on the surface, inside the panel).
         p = positions[i][live].astype(np.float64)
+        if frame is not None:
+            check_on_surface(scene, frame, k, p, problems)
+            film = films[i].astype(np.float64)
+            film_pixels += int((film > 0.0).sum())
+            check_film_on_surface(settings, scene, frame, k, p, slot_age[live], film, problems)
+            continue
         low, high = np.array([r, r]), np.array(panel) - r
         outside = ~np.isfinite(p).all(axis=1) | ((p < low - bound_slack) | (p > high + bound_slack)).any(axis=1)
         if outside.any():
@@ -350,6 +408,10 @@ def check_particles(scenario, f, keys, problems, notes, quota=None):
             widest_volume = max(widest_volume, slack / volume)
     if quota is not None:
         notes.append(f"{int(counts[-1][4])} aspirated by the last key frame, its quota {int(quota[-1])}")
+    if frame is not None:
+        notes.append(f"{int(counts[-1][0])} emitted; film on the surface on {film_pixels} pixels: its reach and "
+                     f"volume checked")
+        return films
     notes.append(f"{int(counts[-1][0])} emitted; film recomputed on {film_pixels} pixels, worst "
                  f"{worst_share:.2f} of the float32 allowance; splats shared among the pixel centres they "
                  f"reach {splats[0]}, whole into the pixel holding their centre {splats[1]}, either {splats[2]}")

@@ -11,6 +11,8 @@ import math
 
 import numpy as np
 
+from golden_mesh import check_mesh_channel
+
 HAPTIC_RATE_HZ = 1000
 POSITION_TOLERANCE_M = 1e-12   # the same formulas in the same order; float64 both sides
 FORCE_TOLERANCE_N = 1e-9
@@ -84,9 +86,10 @@ def cuts_along_strokes(channel):
     return cuts
 
 
-def check_haptics(root, scenario, f, frames, problems, notes):
+def check_haptics(root, scenario, f, frames, problems, notes, mesh=None):
     """Checks /haptics in keyframes.h5 against the replay; returns the cuts the stylus made and the
-    replayed channel (its ticks' time, panel position, contact and buttons)."""
+    replayed channel (its ticks' time, panel position, contact and buttons). With a tissue `mesh`
+    (golden_mesh.read_mesh) the contact is the mesh's (golden_mesh.check_mesh_channel)."""
     fps = scenario["scene"]["frame_rate_hz"]
     ticks = math.floor(frames * HAPTIC_RATE_HZ / fps) + 1   # ticks 0 .. the last frame's end
     trace_path = (root / "scenarios/golden" / scenario["haptics"]["trace"]).resolve()
@@ -100,6 +103,13 @@ def check_haptics(root, scenario, f, frames, problems, notes):
         return [], want
     if not np.array_equal(got["time"], np.arange(ticks) / HAPTIC_RATE_HZ):
         problems.append("/haptics/time is not n / 1000 s")
+    if mesh is not None:   # the stylus touches the mesh: its own checks, after the replayed samples'
+        error = np.abs(got["tool_position"] - want["tool_position"]).max()
+        if error > POSITION_TOLERANCE_M:
+            problems.append(f"/haptics/tool_position differs from the replayed trace by {error:.3g}")
+        if not np.array_equal(got["buttons"].astype(np.int64), want["buttons"].astype(np.int64)):
+            problems.append("/haptics/buttons differ from the replayed trace")
+        return check_mesh_channel(scenario, mesh, got, ticks, want["tool_position"], problems, notes)
     for name, tolerance in (("tool_position", POSITION_TOLERANCE_M), ("panel_position", 1e-9),
                             ("penetration", POSITION_TOLERANCE_M)):
         error = np.abs(got[name] - want[name]).max()

@@ -12,7 +12,7 @@ import json
 import math
 import subprocess
 
-TABLES = ("scene", "spread", "particles", "blur", "trail", "optics", "haptics", "vessels", "pulse", "suction", "contact")
+TABLES = ("scene", "tissue", "spread", "particles", "blur", "trail", "optics", "haptics", "vessels", "pulse", "suction", "contact")
 
 
 def load_params(bleedsim):
@@ -30,8 +30,10 @@ def read_scenario(parsed, params):
     """The parsed TOML (a dict), with every declared table's and every cut's defaults filled in."""
     written = {table: set(parsed[table]) for table in TABLES if table in parsed}
     scenario = dict(parsed)
+    scenario.setdefault("tissue", {})   # every scene has a tissue: the flat panel unless it names a mesh
+    written.setdefault("tissue", set())
     for table in written:
-        scenario[table] = {**defaults(params, table), **parsed[table]}
+        scenario[table] = {**defaults(params, table), **parsed.get(table, {})}
     if "particles" in scenario:
         p = scenario["particles"]
         if "fade_s" not in written["particles"]:
