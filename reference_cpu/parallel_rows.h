@@ -4,11 +4,14 @@
 #include <thread>
 #include <vector>
 
+#include "reference_cpu/worker_pool.h"
+
 namespace bleedsim {
 
 // Runs row_fn(j) for every row j in [0, rows), in contiguous bands over `threads` threads (the
-// caller's thread takes the first band). Each row is written by exactly one thread and depends on
-// no other row, so the bytes do not depend on the thread count.
+// caller's thread takes the first band; the others run on the kept workers of WorkerPool, or on
+// threads started for the loop when another thread's loop holds them). Each row is written by
+// exactly one thread and depends on no other row, so the bytes do not depend on the thread count.
 template <class RowFn>
 void parallel_rows(int rows, int threads, const RowFn& row_fn) {
   const int bands = std::max(1, std::min(threads, rows));
@@ -17,6 +20,11 @@ void parallel_rows(int rows, int threads, const RowFn& row_fn) {
     const int last = int(std::int64_t(rows) * (band + 1) / bands);
     for (int j = first; j < last; ++j) row_fn(j);
   };
+  if (bands == 1) {
+    run_band(0);
+    return;
+  }
+  if (WorkerPool::shared().try_run(bands, run_band)) return;
   std::vector<std::thread> helpers;
   helpers.reserve(bands - 1);
   for (int band = 1; band < bands; ++band) helpers.emplace_back(run_band, band);
