@@ -36,9 +36,9 @@
 //   hand does in the coming tick, holding F changes R by B·|Δx|²/T − F·Δx ≥ −T·|F|²/(4B) (the
 //   quadratic's least value), so |F| ≤ √(4B·R/T) keeps R ≥ 0: W ≤ D at every tick of every contact,
 //   which is passivity with the device's damping (Colgate & Schenkel's condition, here for any field).
-//   A conservative field never meets the bound under that condition (the flat panel's plane does not;
-//   test 1 of tests/haptics/mesh_contact_test.cpp); force shading meets it only where it would return
-//   energy.
+//   A spring leaves R ≥ ½k·h², which the bound's T·(k·h)²/(4B) stays below when B > k·T/2: the flat
+//   panel's plane never meets it in the tests (test 1 of tests/haptics/mesh_contact_test.cpp); force
+//   shading meets it where it would return energy.
 #include <array>
 #include <optional>
 #include <vector>
