@@ -14,6 +14,7 @@
 
 #include "cli/commands.h"
 #include "cli/output_folder.h"
+#include "cli/output_queue.h"
 #include "cli/progress.h"
 #include "cli/run_files.h"
 #include "core/runtime/build_info.h"
@@ -114,6 +115,10 @@ std::string output_dir_key(const RunOptions& options, const Scenario& scenario) 
   return scenario.places.count("output.dir") ? "output.dir" : "scene.name";
 }
 
+// Frames made and waiting for the output's thread: the simulation runs at most this far ahead of
+// the files, and holds this many copies of a frame's fields besides the one being written.
+constexpr std::size_t kFramesQueued = 2;
+
 // A failure while writing: the frames finished so far stay in the partial folder, and the last
 // whole run in the folder is untouched. One line, as every failure is.
 std::runtime_error write_failure(const std::exception& e, long frames_done, const RunFiles& files) {
@@ -173,19 +178,12 @@ int run_command(const RunOptions& options) {
   if (!options.quiet && s.trace) describe_replay(s);
   std::fflush(stdout);
 
-  std::vector<std::vector<std::uint8_t>> host(specs.size());
-  std::vector<const void*> pointers(specs.size());
-  for (std::size_t f = 0; f < specs.size(); ++f) {
-    host[f].resize(sim.field(specs[f].name).field->bytes());
-    pointers[f] = host[f].data();
-  }
-
   InterruptGuard guard;
   Progress progress(frames, !options.quiet && isatty(STDERR_FILENO));
   const Clock::time_point start = Clock::now();
   double simulate_s = 0.0;
   std::vector<double> frame_seconds, tick_seconds;
-  long pngs = 0;
+  long pngs = 0;  // counted on the output's thread; read once it is drained
   // Frames written so far: a write that fails (a full disk, a file size limit, an I/O error) ends the run
   // with the frames before it kept, and leaves the folder's last whole run as it was.
   long written = 0;
@@ -195,28 +193,61 @@ int run_command(const RunOptions& options) {
       writer = std::make_unique<Hdf5FrameWriter>(files.partial("frames.h5").string(), specs,
                                                  provenance(sim, scenario), out.deflate_level, s.trace.has_value());
     if (png_every > 0) fs::create_directory(files.partial("png"));
-    for (long k = 0; k < frames && !interrupted; ++k) {
-      const Clock::time_point step_start = Clock::now();
-      sim.step();
-      for (std::size_t f = 0; f < specs.size(); ++f) sim.copy_field(specs[f].name, host[f].data());
-      frame_seconds.push_back(seconds_since(step_start));
-      simulate_s += frame_seconds.back();
-      tick_seconds.insert(tick_seconds.end(), sim.haptic_tick_seconds().begin(), sim.haptic_tick_seconds().end());
-      if (writer) writer->append(sim.time_s(), pointers, sim.haptic_ticks());
+    // A frame's outputs, on the output's thread, frame after frame: the simulation goes on meanwhile.
+    const auto write_frame = [&](const FrameJob& job) {
+      const long k = job.frame;
+      const std::vector<std::uint8_t>& rgba = job.fields[0];
+      if (writer) {
+        std::vector<const void*> pointers;
+        for (const std::vector<std::uint8_t>& field : job.fields) pointers.push_back(field.data());
+        writer->append(job.time_s, pointers, job.ticks);
+      }
       if (png_due(k, frames, png_every)) {
         write_png_rgba((files.partial("png") / png_name(k)).string(), s.domain.width_px, s.domain.height_px,
-                       host[0].data());
+                       rgba.data());
         ++pngs;
         if (view) {
-          const Image seen = view_of(host[0]);
+          const Image seen = view_of(rgba);
           write_png_rgba((files.partial("png") / view_png_name(k)).string(), seen.width, seen.height, seen.rgba.data());
           ++pngs;
         }
       }
-      if (sheet && sheet->wants(k)) sheet->add(k, host[0].data());
-      if (view_sheet && view_sheet->wants(k)) view_sheet->add(k, view_of(host[0]).rgba.data());
-      written = k + 1;
-      progress.update(k + 1);
+      if (sheet && sheet->wants(k)) sheet->add(k, rgba.data());
+      if (view_sheet && view_sheet->wants(k)) view_sheet->add(k, view_of(rgba).rgba.data());
+    };
+    {
+      OutputQueue output(kFramesQueued, write_frame);
+      try {
+        for (long k = 0; k < frames && !interrupted; ++k) {
+          const Clock::time_point step_start = Clock::now();
+          sim.step();
+          FrameJob job = output.spare();
+          job.fields.resize(specs.size());
+          for (std::size_t f = 0; f < specs.size(); ++f) {
+            job.fields[f].resize(sim.field(specs[f].name).field->bytes());
+            sim.copy_field(specs[f].name, job.fields[f].data());
+          }
+          job.frame = k;
+          job.time_s = sim.time_s();
+          job.ticks = sim.haptic_ticks();
+          frame_seconds.push_back(seconds_since(step_start));
+          simulate_s += frame_seconds.back();
+          tick_seconds.insert(tick_seconds.end(), sim.haptic_tick_seconds().begin(), sim.haptic_tick_seconds().end());
+          output.push(std::move(job));
+          progress.update(k + 1);
+        }
+        // Every frame made is written, an interrupted run's too.
+        output.drain();
+      } catch (...) {
+        // What was queued before the failure is written (or fails too) before the count is taken.
+        try {
+          output.drain();
+        } catch (...) {
+        }
+        written = output.written();
+        throw;
+      }
+      written = output.written();
     }
     progress.clear();
     if (writer) writer->finish(written == frames);
