@@ -70,7 +70,7 @@ void expect_every_cut_in_every_frame(const Scene& scene, const SurfaceMap& surfa
   const std::uint64_t settles = sim.backend().launches("spread") - std::uint64_t(scene.frame_count());
   std::cout << scene.name << ": " << settles << " launches folded settled cuts in over " << scene.frame_count()
             << " frames\n";
-  EXPECT_GT(settles, 10u);
+  EXPECT_GT(settles, 10u);  // not a physics bound: that the fold was exercised (27 measured)
 }
 
 TEST(SpreadSettle, EveryFrameIsTheProductOverEveryCutOnThePanel) {

@@ -646,6 +646,8 @@ TEST(MeshContact, ARestlessHandExtractsNoEnergy) {
               << p.worst_excess_J * 1e3 << " mJ, W " << p.returned_J * 1e3 << " mJ, D "
               << kParams.device_damping_Ns_per_m * p.steps_m2 / kT * 1e3 << " mJ; bound on " << p.bound_ticks
               << " ticks, up to " << p.most_taken_N << " N\n";
+    // Not a physics bound: only that the walk spent a good part of its time in contact, so that the
+    // passivity checked below was put to the test (measured 9,603 to 17,751 of 20,000).
     EXPECT_GT(in_contact, 2000) << meshes[m].first;
     expect_passive(p, meshes[m].first);
   }
