@@ -155,7 +155,7 @@ struct Pile {
     a.position = position.as<float>();
     a.velocity = velocity.as<float>();
     a.age = age.as<std::uint32_t>();
-    const std::size_t sort_bytes = backend->particle_sort_scratch_bytes(n, model.key_bits);
+    const std::size_t sort_bytes = backend->particle_sort_scratch_bytes(n, cell_count(model));
     scratch = backend->allocate(particle_scratch_bytes(cell_count(model), n, sort_bytes));
     point_particle_scratch(a, cell_count(model), scratch.data(), sort_bytes);
     clear_particles(*backend, a);  // every slot at rest; scratch defined

@@ -64,8 +64,8 @@ class CudaBackend final : public Backend {
     BLEEDSIM_CUDA_CHECK(cudaMemGetInfo(&free_bytes, &total_bytes));
     return free_bytes;
   }
-  std::size_t particle_sort_scratch_bytes(int capacity, int key_bits) const override {
-    return particle_sort_scratch_cuda(capacity, key_bits);
+  std::size_t particle_sort_scratch_bytes(int capacity, std::uint32_t cells) const override {
+    return particle_sort_scratch_cuda(capacity, cells);
   }
   double time_ms(const std::function<void()>& work) override {
     CudaEvent start, stop;

@@ -1,9 +1,24 @@
-// The CUDA twin of the particle step: launches of core/physics/particles.h. The sort is CUB's radix sort
-// on the cell key with the slot as value; it is stable, so it orders (cell, slot) exactly as the
-// CPU reference's counting sort does.
-#include <cub/device/device_radix_sort.cuh>
+// The CUDA twin of the particle step: launches of core/physics/particles.h.
+//
+// The bin is a counting sort with no sort of keys: each live particle counts itself into its cell
+// (an integer atomic, which also hands it a place among its cell's in arrival order), a scan of
+// the counts gives every cell's start, each particle writes itself to its arrival place, and then
+// takes its final place by counting the particles of its cell that come before it in ascending
+// slot order. So every cell holds its slots in ascending order, exactly as the CPU reference's
+// stable counting sort leaves them, whatever order the atomics ran in. The counts go back to zero
+// for the cells that were touched, so no step clears the whole table.
+//
+// A frame's steps run as one CUDA graph: hundreds of steps of small launches cost their launch
+// overhead, not their arithmetic, when the host issues each one. The graph's launches read their
+// step's arguments from the step list on the device, so the same graph serves every frame whose
+// shape (steps, grid sizes, buffers) is the same; the host copies the list there, through pinned
+// memory, before launching it.
+#include <cub/device/device_scan.cuh>
 
+#include <algorithm>
 #include <cstddef>
+#include <cstring>
+#include <memory>
 
 #include "core/physics/particles.h"
 #include "kernels/cuda_check.h"
@@ -15,89 +30,322 @@ constexpr int kThreads = 256;
 
 int blocks_for(int count) { return (count + kThreads - 1) / kThreads; }
 
-__global__ void emit_kernel(ParticleArgs a) {
+// Where a kernel finds its step's arguments: given with the launch (a step launched on its own), or
+// in the step list on the device (a step of a graph, whose launches stay the same from frame to frame).
+struct GivenArgs {
+  ParticleArgs a;
+  __device__ ParticleArgs at(ParticlePhase) const { return a; }
+};
+
+struct PlannedArgs {
+  ParticleArgs base;
+  const ParticleStep* steps;
+  const Emitter* emitters;
+  int s;
+  __device__ ParticleArgs at(ParticlePhase phase) const { return args_at(base, steps[s], emitters, phase); }
+};
+
+template <class Args>
+__global__ void emit_kernel(Args args) {
+  const ParticleArgs a = args.at(ParticlePhase::emit);
   const int t = blockIdx.x * blockDim.x + threadIdx.x;
   if (t < a.new_count) emit_particle(a, t);
 }
 
-__global__ void cell_key_kernel(ParticleArrays p, ParticleModel m) {
-  const int slot = blockIdx.x * blockDim.x + threadIdx.x;
-  if (slot < p.capacity) p.cell_key[slot] = cell_key_of(p, m, slot);
+// The bin's storage in the particle scratch's sort_scratch: per cell a count (zero between steps),
+// per live particle its place among its cell's in arrival order, the cells' particles in arrival
+// order, and the scan's temporary storage.
+struct BinScratch {
+  std::uint32_t* count;      // cells + 1 (the last stays 0, so the scan's last entry is the total)
+  std::uint32_t* arrival;    // per live particle t
+  std::uint32_t* unordered;  // per sorted position: the t that arrived there
+  void* scan;
+  std::size_t scan_bytes;
+};
+
+std::size_t aligned(std::size_t bytes) { return (bytes + 255) / 256 * 256; }
+
+std::size_t scan_bytes_for(std::uint32_t cells, cudaStream_t stream = nullptr) {
+  std::size_t bytes = 0;
+  BLEEDSIM_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(nullptr, bytes, static_cast<std::uint32_t*>(nullptr),
+                                                    static_cast<std::uint32_t*>(nullptr), int(cells) + 1, stream));
+  return bytes;
 }
 
-// The live particles sort first (empty slots carry the largest key): only they need ranges,
-// sorted copies and contacts.
-__global__ void cell_range_kernel(ParticleArrays p, ParticleModel m, int live) {
+BinScratch bin_scratch(const ParticleArrays& p, std::uint32_t cells) {
+  char* at = static_cast<char*>(p.sort_scratch);
+  BinScratch b{};
+  b.count = reinterpret_cast<std::uint32_t*>(at);
+  at += aligned((std::size_t(cells) + 1) * sizeof(std::uint32_t));
+  b.arrival = reinterpret_cast<std::uint32_t*>(at);
+  at += aligned(std::size_t(p.capacity) * sizeof(std::uint32_t));
+  b.unordered = reinterpret_cast<std::uint32_t*>(at);
+  at += aligned(std::size_t(p.capacity) * sizeof(std::uint32_t));
+  b.scan = at;
+  b.scan_bytes = p.sort_scratch_bytes - std::size_t(at - static_cast<char*>(p.sort_scratch));
+  return b;
+}
+
+// The t-th live slot (ascending) counts itself into its cell; the dead and aspirated count nowhere.
+template <class Args>
+__global__ void count_kernel(Args args, BinScratch b) {
+  const ParticleArgs a = args.at(ParticlePhase::bin);
+  const int t = blockIdx.x * blockDim.x + threadIdx.x;
+  if (t >= a.live_count) return;
+  const std::uint32_t key = cell_key_of(a.arrays, a.model, nth_live_slot_ascending(a, t));
+  a.arrays.cell_key[t] = key;
+  if (key != sentinel_key(a.model)) b.arrival[t] = atomicAdd(&b.count[key], 1u);
+}
+
+// Each particle at its arrival place in its cell's range; its cell's count back to zero (every
+// particle of the cell writes the same zero, after the scan has read the count).
+template <class Args>
+__global__ void arrive_kernel(Args args, BinScratch b) {
+  const ParticleArgs a = args.at(ParticlePhase::bin);
+  const int t = blockIdx.x * blockDim.x + threadIdx.x;
+  if (t >= a.live_count) return;
+  const std::uint32_t key = a.arrays.cell_key[t];
+  if (key == sentinel_key(a.model)) return;
+  b.unordered[a.arrays.cell_start[key] + b.arrival[t]] = std::uint32_t(t);
+  b.count[key] = 0u;
+}
+
+// Each particle's final place: its cell's start plus the particles of its cell before it in
+// ascending slot order (smaller t); there it writes its key and slot and gathers its sorted copies.
+// Sorted positions past the living (aspirated or expired particles in the live range) get the
+// largest key, as on the CPU.
+template <class Args>
+__global__ void place_kernel(Args args, BinScratch b) {
+  const ParticleArgs a = args.at(ParticlePhase::bin);
+  const ParticleArrays& p = a.arrays;
+  const int t = blockIdx.x * blockDim.x + threadIdx.x;
+  if (t >= a.live_count) return;
+  const std::uint32_t none = sentinel_key(a.model);
+  if (std::uint32_t(t) >= p.cell_start[none]) p.sorted_key[t] = none;
+  const std::uint32_t key = p.cell_key[t];
+  if (key == none) return;
+  const std::uint32_t start = p.cell_start[key], end = p.cell_start[key + 1];
+  std::uint32_t i = start;
+  for (std::uint32_t j = start; j < end; ++j) i += b.unordered[j] < std::uint32_t(t) ? 1u : 0u;
+  p.sorted_key[i] = key;
+  p.sorted_slot[i] = std::uint32_t(nth_live_slot_ascending(a, t));
+  gather_sorted(p, int(i));
+}
+
+template <class Args>
+__global__ void collide_kernel(Args args) {
+  const ParticleArgs a = args.at(ParticlePhase::collide);
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i >= live) return;
-  mark_cell_range(p, m, i);
-  gather_sorted(p, i);
+  if (i < a.live_count) collide_particle(a.arrays, a.model, i);
 }
 
-__global__ void collide_kernel(ParticleArrays p, ParticleModel m, int live) {
-  const int i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i < live) collide_particle(p, m, i);
-}
-
-__global__ void integrate_kernel(ParticleArgs a) {
+template <class Args>
+__global__ void integrate_kernel(Args args) {
+  const ParticleArgs a = args.at(ParticlePhase::integrate);
   const int t = blockIdx.x * blockDim.x + threadIdx.x;
   if (t < a.live_count) integrate_particle(a.arrays, a.model, live_slot(a, t));
 }
 
-void sort_by_cell(const ParticleArrays& p, const ParticleModel& m) {
-  std::size_t bytes = p.sort_scratch_bytes;
-  BLEEDSIM_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(p.sort_scratch, bytes, p.cell_key, p.sorted_key,
-                                                      p.slot_index, p.sorted_slot, p.capacity, 0, m.key_bits));
+// The threads a step's launches take: for its new particles, and for its live ones (0: no launch).
+struct Grid {
+  int new_threads;
+  int live_threads;
+};
+
+// Every cell's start (and, past the last, the living's count) from the counts.
+void scan_counts(const ParticleArrays& p, const ParticleModel& m, const BinScratch& b, cudaStream_t stream) {
+  std::size_t bytes = b.scan_bytes;
+  BLEEDSIM_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(b.scan, bytes, b.count, p.cell_start, int(cell_count(m)) + 1, stream));
 }
 
-void bin(const ParticleArgs& a) {
-  const ParticleArrays& p = a.arrays;
-  const std::size_t cells = cell_count(a.model);
-  cell_key_kernel<<<blocks_for(p.capacity), kThreads>>>(p, a.model);
-  check_launch("cell_key_kernel");
-  sort_by_cell(p, a.model);
-  // Empty cells keep start = end = 0: an empty range, as on the CPU.
-  BLEEDSIM_CUDA_CHECK(cudaMemsetAsync(p.cell_start, 0, cells * sizeof(std::uint32_t)));
-  BLEEDSIM_CUDA_CHECK(cudaMemsetAsync(p.cell_end, 0, cells * sizeof(std::uint32_t)));
-  if (a.live_count == 0) return;
-  cell_range_kernel<<<blocks_for(a.live_count), kThreads>>>(p, a.model, a.live_count);
-  check_launch("cell_range_kernel");
-}
-
-}  // namespace
-
-std::size_t particle_sort_scratch_cuda(int capacity, int key_bits) {
-  std::size_t bytes = 0;
-  BLEEDSIM_CUDA_CHECK(cub::DeviceRadixSort::SortPairs(nullptr, bytes, static_cast<std::uint32_t*>(nullptr),
-                                                      static_cast<std::uint32_t*>(nullptr),
-                                                      static_cast<std::uint32_t*>(nullptr),
-                                                      static_cast<std::uint32_t*>(nullptr), capacity, 0,
-                                                      key_bits));
-  return bytes;
-}
-
-void cuda_twin(ParticlePhase phase, const ParticleArgs& a) {
-  const int n = a.live_count;
+// One phase's launches on `stream`; `shape` gives the arrays and the model, `args` the step.
+template <class Args>
+void launch_phase(ParticlePhase phase, const Args& args, const ParticleArgs& shape, Grid grid, cudaStream_t stream) {
+  const ParticleArrays& p = shape.arrays;
+  const int new_blocks = blocks_for(grid.new_threads), live_blocks = blocks_for(grid.live_threads);
   switch (phase) {
     case ParticlePhase::emit:
-      if (a.new_count == 0) return;
-      emit_kernel<<<blocks_for(a.new_count), kThreads>>>(a);
+      if (new_blocks == 0) return;
+      emit_kernel<<<new_blocks, kThreads, 0, stream>>>(args);
       check_launch("emit_kernel");
       break;
-    case ParticlePhase::bin:
-      bin(a);
+    case ParticlePhase::bin: {
+      if (live_blocks == 0) return;
+      const BinScratch b = bin_scratch(p, cell_count(shape.model));
+      count_kernel<<<live_blocks, kThreads, 0, stream>>>(args, b);
+      check_launch("count_kernel");
+      scan_counts(p, shape.model, b, stream);
+      arrive_kernel<<<live_blocks, kThreads, 0, stream>>>(args, b);
+      check_launch("arrive_kernel");
+      place_kernel<<<live_blocks, kThreads, 0, stream>>>(args, b);
+      check_launch("place_kernel");
       break;
+    }
     case ParticlePhase::collide:
-      if (n == 0) return;
-      collide_kernel<<<blocks_for(n), kThreads>>>(a.arrays, a.model, n);
+      if (live_blocks == 0) return;
+      collide_kernel<<<live_blocks, kThreads, 0, stream>>>(args);
       check_launch("collide_kernel");
       break;
     case ParticlePhase::integrate:
-      if (n == 0) return;
-      integrate_kernel<<<blocks_for(n), kThreads>>>(a);
+      if (live_blocks == 0) return;
+      integrate_kernel<<<live_blocks, kThreads, 0, stream>>>(args);
       check_launch("integrate_kernel");
       break;
   }
+}
+
+constexpr ParticlePhase kStepPhases[] = {ParticlePhase::emit, ParticlePhase::bin, ParticlePhase::collide,
+                                         ParticlePhase::integrate};
+
+// Threads for `count` elements in a graph that must serve later frames too: a power of two, at least
+// `least`, at most the ring (0 when none), so the graph changes only when a count outgrows its size.
+int graph_threads(int count, int least, int capacity) {
+  if (count == 0) return 0;
+  int threads = least;
+  while (threads < count) threads *= 2;
+  return std::min(threads, capacity);
+}
+
+// What a graph's launches depend on besides the device step list's contents.
+struct GraphShape {
+  const float* position = nullptr;  // the stage's arrays (the model is the stage's, fixed)
+  const ParticleStep* steps = nullptr;
+  const Emitter* emitters = nullptr;
+  int count = 0;
+  Grid grid{0, 0};
+  bool operator==(const GraphShape& o) const {
+    return position == o.position && steps == o.steps && emitters == o.emitters && count == o.count &&
+           grid.new_threads == o.grid.new_threads && grid.live_threads == o.grid.live_threads;
+  }
+};
+
+// The steps' graph and what feeds it: a stream of its own (a blocking one: it waits for the work
+// issued before it on the default stream, and that stream's later work waits for it) and two
+// pinned staging buffers, used in turn, so that copying one run's steps need not wait for the
+// copy before it.
+class StepGraph final : public TwinCache {
+ public:
+  StepGraph() { BLEEDSIM_CUDA_CHECK(cudaStreamCreate(&stream_)); }
+  ~StepGraph() override {
+    if (exec_) cudaGraphExecDestroy(exec_);
+    for (Staging& s : staging_) {
+      if (s.copied) cudaEventDestroy(s.copied);
+      if (s.host) cudaFreeHost(s.host);
+    }
+    cudaStreamDestroy(stream_);
+  }
+  StepGraph(const StepGraph&) = delete;
+  StepGraph& operator=(const StepGraph&) = delete;
+
+  void run(const ParticleSteps& f) {
+    copy_to_device(f);
+    if (f.count == 1) {  // a step on its own (between the instrument's): its launches, directly
+      const ParticleStep& step = f.steps[0];
+      for (const ParticlePhase phase : kStepPhases) {
+        const ParticleArgs a = args_at(f.base, step, f.device_emitters, phase);
+        launch_phase(phase, GivenArgs{a}, a, Grid{a.new_count, a.live_count}, stream_);
+      }
+      return;
+    }
+    int most_new = 0, most_live = 0;
+    for (int s = 0; s < f.count; ++s) {
+      most_new = std::max(most_new, f.steps[s].new_count);
+      most_live = std::max({most_live, f.steps[s].live_count, f.steps[s].emit_live_count});
+    }
+    const int capacity = f.base.arrays.capacity;
+    const GraphShape shape{f.base.arrays.position, f.device_steps, f.device_emitters, f.count,
+                           Grid{graph_threads(most_new, kThreads, capacity),
+                                graph_threads(most_live, 16 * kThreads, capacity)}};
+    if (!exec_ || !(shape == shape_)) capture(f, shape);
+    BLEEDSIM_CUDA_CHECK(cudaGraphLaunch(exec_, stream_));
+  }
+
+ private:
+  struct Staging {
+    void* host = nullptr;
+    std::size_t bytes = 0;
+    cudaEvent_t copied = nullptr;  // recorded after the last copy out of it
+  };
+
+  // The steps, and the emitters they use, to the same places on the device.
+  void copy_to_device(const ParticleSteps& f) {
+    const ParticleStep& last = f.steps[f.count - 1];
+    const std::uint32_t first_emitter = f.steps[0].first_emitter, end_emitter = last.first_emitter + last.emitter_count;
+    const std::size_t step_bytes = std::size_t(f.count) * sizeof(ParticleStep);
+    const std::size_t emitter_bytes = std::size_t(end_emitter - first_emitter) * sizeof(Emitter);
+    Staging& s = staging_[next_];
+    next_ = 1 - next_;
+    if (s.copied) BLEEDSIM_CUDA_CHECK(cudaEventSynchronize(s.copied));
+    else BLEEDSIM_CUDA_CHECK(cudaEventCreateWithFlags(&s.copied, cudaEventDisableTiming));
+    if (s.bytes < step_bytes + emitter_bytes) {
+      if (s.host) BLEEDSIM_CUDA_CHECK(cudaFreeHost(s.host));
+      s.host = nullptr;
+      s.bytes = 0;
+      BLEEDSIM_CUDA_CHECK(cudaMallocHost(&s.host, 2 * (step_bytes + emitter_bytes)));
+      s.bytes = 2 * (step_bytes + emitter_bytes);
+    }
+    char* staged = static_cast<char*>(s.host);
+    std::memcpy(staged, f.steps, step_bytes);
+    BLEEDSIM_CUDA_CHECK(cudaMemcpyAsync(f.device_steps, staged, step_bytes, cudaMemcpyHostToDevice, stream_));
+    if (emitter_bytes > 0) {
+      std::memcpy(staged + step_bytes, f.emitters + first_emitter, emitter_bytes);
+      BLEEDSIM_CUDA_CHECK(cudaMemcpyAsync(f.device_emitters + first_emitter, staged + step_bytes, emitter_bytes,
+                                          cudaMemcpyHostToDevice, stream_));
+    }
+    BLEEDSIM_CUDA_CHECK(cudaEventRecord(s.copied, stream_));
+  }
+
+  // Records every step's launches into a graph, reading each step's arguments from the device list.
+  void capture(const ParticleSteps& f, const GraphShape& shape) {
+    cudaGraph_t graph = nullptr;
+    BLEEDSIM_CUDA_CHECK(cudaStreamBeginCapture(stream_, cudaStreamCaptureModeThreadLocal));
+    try {
+      for (int s = 0; s < f.count; ++s)
+        for (const ParticlePhase phase : kStepPhases)
+          launch_phase(phase, PlannedArgs{f.base, f.device_steps, f.device_emitters, s}, f.base, shape.grid, stream_);
+    } catch (...) {
+      if (cudaStreamEndCapture(stream_, &graph) == cudaSuccess && graph) cudaGraphDestroy(graph);
+      throw;
+    }
+    BLEEDSIM_CUDA_CHECK(cudaStreamEndCapture(stream_, &graph));
+    // A graph of the same launches with other sizes or buffers updates the one there is, at a
+    // fraction of making a new one; other launches (CUB picks its kernels by the items) need one.
+    cudaGraphExecUpdateResultInfo update{};
+    cudaError_t made = exec_ ? cudaGraphExecUpdate(exec_, graph, &update) : cudaErrorGraphExecUpdateFailure;
+    if (made != cudaSuccess) {
+      cudaGetLastError();  // a failed update is an answer, not an error to carry
+      if (exec_) cudaGraphExecDestroy(exec_);
+      exec_ = nullptr;
+      made = cudaGraphInstantiate(&exec_, graph, 0);
+      if (made != cudaSuccess) exec_ = nullptr;
+    }
+    cudaGraphDestroy(graph);
+    BLEEDSIM_CUDA_CHECK(made);
+    shape_ = shape;
+  }
+
+  cudaStream_t stream_ = nullptr;
+  Staging staging_[2];
+  int next_ = 0;
+  cudaGraphExec_t exec_ = nullptr;
+  GraphShape shape_;
+};
+
+}  // namespace
+
+std::size_t particle_sort_scratch_cuda(int capacity, std::uint32_t cells) {
+  return aligned((std::size_t(cells) + 1) * sizeof(std::uint32_t)) +
+         2 * aligned(std::size_t(capacity) * sizeof(std::uint32_t)) + scan_bytes_for(cells);
+}
+
+void cuda_twin(ParticlePhase phase, const ParticleArgs& a) {
+  launch_phase(phase, GivenArgs{a}, a, Grid{a.new_count, a.live_count}, nullptr);
+}
+
+void cuda_twin(const ParticleSteps& f) {
+  if (f.count == 0) return;
+  if (!*f.cache) *f.cache = std::make_unique<StepGraph>();
+  static_cast<StepGraph&>(**f.cache).run(f);
 }
 
 }  // namespace bleedsim

@@ -34,7 +34,7 @@ class CpuBackend final : public Backend {
   void download(void* dst, const void* src, std::size_t bytes) override { std::memcpy(dst, src, bytes); }
   void synchronize() override {}
   std::size_t memory_available() const override { return available_host_memory(); }
-  std::size_t particle_sort_scratch_bytes(int, int) const override { return 0; }
+  std::size_t particle_sort_scratch_bytes(int, std::uint32_t) const override { return 0; }
   double time_ms(const std::function<void()>& work) override {
     const auto start = std::chrono::steady_clock::now();
     work();

@@ -1,5 +1,5 @@
-// The CPU reference of the particle step: loops over core/physics/particles.h. The sort is a counting
-// sort, which is stable, so it orders (cell, slot) exactly as the GPU's radix sort does.
+// The CPU reference of the particle step: loops over core/physics/particles.h. The bin is a counting
+// sort, which is stable, so it orders (cell, slot) exactly as the GPU's bin does.
 #include <algorithm>
 #include <cstring>
 #include <vector>
@@ -10,20 +10,12 @@
 namespace bleedsim {
 namespace {
 
-// The n-th live slot in ascending slot order, n < live_count (the live range wraps round the ring):
-// the order a stable sort keeps ties in.
-int nth_live_slot_ascending(const ParticleArgs& a, int n) {
-  const int wrapped = std::max(0, int(a.first_live_slot) + a.live_count - a.arrays.capacity);
-  return n < wrapped ? n : int(a.first_live_slot) + (n - wrapped);
-}
-
 // The most the per-band cell counts of a parallel bin may take: a panel of many small cells sorts on
 // one thread rather than hold a count per cell for every thread.
 constexpr std::size_t kBinCountBytes = std::size_t(64) << 20;
 
-// Only the live slots are sorted: they come first in the GPU's sort of every slot too (empty
-// slots carry the largest key), so sorted positions [0, live_count) agree between the backends.
-// Aspirated particles in the live range carry that key too, and sort after the living.
+// Only the live slots are sorted, as on the GPU. Aspirated particles in the live range carry the
+// largest key, and sort after the living.
 //
 // A counting sort, stable: the live slots in ascending order are cut into bands, one a thread; each
 // band counts its slots per cell; a cell's place is then the counts of the cells before it, and
@@ -77,10 +69,10 @@ void bin(const ParticleArgs& a, int threads) {
         count = at;
         at += in_band;
       }
-      p.cell_end[c] = at;
     }
   });
   const int living = int(chunk_start[chunks]);
+  p.cell_start[cells] = std::uint32_t(living);
   parallel_rows(bands, bands, [&](int band) {
     std::uint32_t* next = counts.data() + std::size_t(band) * cells;
     for (int t = band_first(band); t < band_first(band + 1); ++t) {
@@ -113,6 +105,12 @@ void cpu_twin(ParticlePhase phase, const ParticleArgs& a, int threads) {
       parallel_rows(n, threads_for_particles(n, threads), [&](int t) { integrate_particle(a.arrays, a.model, live_slot(a, t)); });
       break;
   }
+}
+
+void cpu_twin(const ParticleSteps& f, int threads) {
+  for (int s = 0; s < f.count; ++s)
+    for (const ParticlePhase phase : {ParticlePhase::emit, ParticlePhase::bin, ParticlePhase::collide, ParticlePhase::integrate})
+      cpu_twin(phase, args_at(f.base, f.steps[s], f.emitters, phase), threads);
 }
 
 }  // namespace bleedsim

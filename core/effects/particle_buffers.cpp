@@ -1,7 +1,6 @@
 #include "core/effects/particle_buffers.h"
 
 #include <algorithm>
-#include <numeric>
 #include <vector>
 
 namespace bleedsim {
@@ -9,8 +8,8 @@ namespace {
 
 // Offsets of the scratch arrays, one after another, each aligned for vector loads.
 struct ScratchLayout {
-  std::size_t acceleration, shift, on_edge, cell_key, slot_index, sorted_key, sorted_slot, sorted_position,
-      sorted_velocity, sorted_age, cell_start, cell_end, fates, sort_scratch, total;
+  std::size_t acceleration, shift, on_edge, cell_key, sorted_key, sorted_slot, sorted_position, sorted_velocity,
+      sorted_age, cell_start, fates, sort_scratch, total;
 
   ScratchLayout(std::size_t cells, int capacity, std::size_t sort_scratch_bytes) {
     const std::size_t n = std::size_t(capacity);
@@ -24,14 +23,12 @@ struct ScratchLayout {
     shift = take(2 * n * sizeof(float));
     on_edge = take(n * sizeof(std::uint32_t));
     cell_key = take(n * sizeof(std::uint32_t));
-    slot_index = take(n * sizeof(std::uint32_t));
     sorted_key = take(n * sizeof(std::uint32_t));
     sorted_slot = take(n * sizeof(std::uint32_t));
     sorted_position = take(2 * n * sizeof(float));
     sorted_velocity = take(2 * n * sizeof(float));
     sorted_age = take(n * sizeof(std::uint32_t));
-    cell_start = take(cells * sizeof(std::uint32_t));
-    cell_end = take(cells * sizeof(std::uint32_t));
+    cell_start = take((cells + 1) * sizeof(std::uint32_t));
     fates = take(sizeof(AspiratedFates));
     sort_scratch = take(sort_scratch_bytes);
     total = at;
@@ -55,14 +52,12 @@ void point_particle_scratch(ParticleArrays& a, std::size_t cells, void* base, st
   a.shift = at_offset<float>(base, layout.shift);
   a.on_edge = at_offset<std::uint32_t>(base, layout.on_edge);
   a.cell_key = at_offset<std::uint32_t>(base, layout.cell_key);
-  a.slot_index = at_offset<std::uint32_t>(base, layout.slot_index);
   a.sorted_key = at_offset<std::uint32_t>(base, layout.sorted_key);
   a.sorted_slot = at_offset<std::uint32_t>(base, layout.sorted_slot);
   a.sorted_position = at_offset<float>(base, layout.sorted_position);
   a.sorted_velocity = at_offset<float>(base, layout.sorted_velocity);
   a.sorted_age = at_offset<std::uint32_t>(base, layout.sorted_age);
   a.cell_start = at_offset<std::uint32_t>(base, layout.cell_start);
-  a.cell_end = at_offset<std::uint32_t>(base, layout.cell_end);
   a.fates = at_offset<AspiratedFates>(base, layout.fates);
   a.sort_scratch = sort_scratch_bytes ? at_offset<void>(base, layout.sort_scratch) : nullptr;
   a.sort_scratch_bytes = sort_scratch_bytes;
@@ -79,10 +74,11 @@ void clear_particles(Backend& backend, const ParticleArrays& a) {
   backend.upload(a.on_edge, words.data(), n * sizeof(std::uint32_t));
   std::fill(words.begin(), words.end(), kNeverUsed);
   backend.upload(a.age, words.data(), n * sizeof(std::uint32_t));
-  std::iota(words.begin(), words.end(), 0u);
-  backend.upload(a.slot_index, words.data(), n * sizeof(std::uint32_t));
   const AspiratedFates none{};
   backend.upload(a.fates, &none, sizeof none);
+  // The CUDA bin keeps its cells' counts at zero between steps (kernels/particles.cu).
+  const std::vector<std::uint8_t> zero_bytes(a.sort_scratch_bytes, 0u);
+  if (a.sort_scratch) backend.upload(a.sort_scratch, zero_bytes.data(), a.sort_scratch_bytes);
 }
 
 }  // namespace bleedsim

@@ -14,8 +14,7 @@ namespace bleedsim {
 std::size_t particle_scratch_bytes(std::size_t cells, int capacity, std::size_t sort_scratch_bytes);
 // Points those members into `base`, which holds particle_scratch_bytes() bytes.
 void point_particle_scratch(ParticleArrays& arrays, std::size_t cells, void* base, std::size_t sort_scratch_bytes);
-// An empty ring: every slot at the origin, at rest and never used; the sort's values 0, 1, 2, …;
-// no particle aspirated.
+// An empty ring: every slot at the origin, at rest and never used; no particle aspirated.
 // Every byte that is hashed starts defined.
 void clear_particles(Backend& backend, const ParticleArrays& arrays);
 

@@ -19,12 +19,6 @@ std::uint32_t steps_in(double seconds, double steps_per_s) {
   return std::max(Count(1), Count::floor_of(std::round(seconds * steps_per_s))).to<std::uint32_t>();
 }
 
-int bits_for(std::uint32_t value) {
-  int bits = 0;
-  while (bits < 32 && (value >> bits) != 0) ++bits;
-  return std::max(bits, 1);
-}
-
 // The deepest pile there can be: the panel's extent along gravity, or every slot of the ring heaped
 // into a quarter-disc against a corner (hexagonally packed), whichever is less. Sticky blood heaps
 // where it lands rather than levelling across the floor, and a quarter-disc is the deepest mound a
@@ -151,7 +145,6 @@ ParticleModel make_particle_model(const Scene& scene) {
   m.cell_mm = float(cell_mm);
   m.cells_x = cells_along(scene.domain.width_mm, cell_mm).to<int>();
   m.cells_y = cells_along(scene.domain.height_mm, cell_mm).to<int>();
-  m.key_bits = bits_for(std::uint32_t(m.cells_x) * std::uint32_t(m.cells_y));
   m.lifetime = particle_lifetime(scene);
   m.jitter_mm = float(p.jitter_mm);
   m.velocity_x = float(p.velocity_x_mm_s);

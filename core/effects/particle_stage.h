@@ -1,5 +1,6 @@
 #pragma once
 #include <cstddef>
+#include <memory>
 #include <optional>
 #include <vector>
 
@@ -22,17 +23,20 @@ class ParticleStage final : public Stage {
   void run(const Scene& scene, State& state, Backend& backend) override;
 
  private:
-  void emit(const Scene& scene, const State& state, Backend& backend, std::uint64_t step);
-  // Points the step at the live particles, from the accounting (the ids in [oldest alive, emitted)).
-  void track_live_particles();
+  // Every step of this frame planned on the host (emission, live ranges, accounting), before any runs.
+  void plan_frame(const Scene& scene, const State& state, Backend& backend);
+  void plan_emission(const Scene& scene, const State& state, std::uint64_t step, ParticleStep& planned);
+  void live_range(std::uint32_t& first_live_slot, int& live_count) const;
 
-  ParticleArgs args_{};
+  ParticleArgs args_{};  // the model and arrays; a step's own arguments are in steps_
   Field* counts_ = nullptr;  // the accounting, uploaded each frame (aspirated only with [suction])
   ParticleAccounting accounting_;
-  int substeps_;              // physics steps per frame
-  Buffer scratch_;            // every array of ParticleArrays that is not a field
-  Buffer emitters_;           // this step's Emitters, uploaded; grows with the cut list
-  std::vector<Emitter> new_;  // host side of emitters_
+  int substeps_;                    // physics steps per frame
+  Buffer scratch_;                  // every array of ParticleArrays that is not a field
+  std::vector<ParticleStep> steps_;  // this frame's
+  std::vector<Emitter> emitters_;    // this frame's steps' emitters, in step order
+  Buffer plan_;                      // the backend's copy of both; grows with the emitters
+  std::unique_ptr<TwinCache> graph_;  // the backend's (CUDA: the steps' graph)
   std::optional<Instrument> instrument_;  // with [suction] or [contact]
 };
 

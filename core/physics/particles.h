@@ -23,11 +23,13 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 
 #include "core/physics/counter_hash.h"
 #include "core/physics/hd.h"
 #include "core/physics/pixel_grid.h"
 #include "core/physics/surface.h"
+#include "core/runtime/twin_cache.h"
 
 namespace bleedsim {
 
@@ -67,7 +69,6 @@ struct ParticleModel {
   float cell_mm;           // grid cell edge in panel mm, ≥ the range on the surface
   int cells_x;
   int cells_y;
-  int key_bits;            // bits of a cell key; the sentinel `cells_x·cells_y` marks no particle
   ParticleLifetime lifetime;
   float jitter_mm;         // emission: position jitter, ± this in x and y
   float velocity_x;        // emission: initial velocity, mm/s ...
@@ -103,17 +104,17 @@ struct ParticleArrays {
   float* acceleration;       // contact acceleration, collide → integrate
   float* shift;              // mm: the move that undoes overlaps with new particles, collide → integrate
   std::uint32_t* on_edge;    // 1 where it is on the film's edge, collide → integrate
-  std::uint32_t* cell_key;   // per slot
-  std::uint32_t* slot_index; // 0, 1, 2, …: the values the sort carries
+  std::uint32_t* cell_key;   // the bin's keys: per slot (CPU); the t-th live slot's (CUDA)
   std::uint32_t* sorted_key;
   std::uint32_t* sorted_slot;
   float* sorted_position;
   float* sorted_velocity;
   std::uint32_t* sorted_age;
-  std::uint32_t* cell_start;  // per cell: [start, end) in sorted order; empty cells start = end
-  std::uint32_t* cell_end;
+  // cells + 1 entries: cell c's particles are sorted positions [cell_start[c], cell_start[c + 1]),
+  // and cell_start[cells] is the number of living particles.
+  std::uint32_t* cell_start;
   AspiratedFates* fates;      // one, for the whole ring
-  void* sort_scratch;         // the CUDA sort's temporary storage (none on the CPU)
+  void* sort_scratch;         // the CUDA bin's counts, places and scan storage (none on the CPU)
   std::size_t sort_scratch_bytes;
 };
 
@@ -143,6 +144,48 @@ struct ParticleArgs {
   std::uint32_t first_live_slot;
   int live_count;
 };
+
+// ---- a frame's steps ---------------------------------------------------------------------------
+
+// What changes from one step to the next, planned on the host from the cuts and the accounting
+// alone, so that a backend can run many steps as one piece of work (CUDA: one graph a frame).
+struct ParticleStep {
+  std::uint64_t step;
+  std::uint32_t first_emitter;  // its emitters: [first_emitter, + emitter_count) of the steps' list
+  int emitter_count;
+  int new_count;
+  std::uint32_t emit_first_live_slot;  // the live range emission sees: the one before it
+  int emit_live_count;
+  std::uint32_t first_live_slot;  // the range bin, collide and integrate see
+  int live_count;
+};
+
+// A run of consecutive steps. The step list and emitters are read from host memory; the CUDA twin
+// copies them to device_steps and device_emitters (backend memory the caller allocated) and keeps
+// the graph it launches in *cache, which lives as long as the caller's arrays do.
+struct ParticleSteps {
+  ParticleArgs base;  // the model and the arrays; what changes per step comes from steps
+  const ParticleStep* steps;
+  int count;
+  const Emitter* emitters;
+  int emitter_count;
+  ParticleStep* device_steps;
+  Emitter* device_emitters;
+  std::unique_ptr<TwinCache>* cache;
+};
+
+// The arguments `phase` of `step` runs with: the live range before emission for emit, after it else.
+BLEEDSIM_HD inline ParticleArgs args_at(ParticleArgs a, const ParticleStep& step, const Emitter* emitters,
+                                        ParticlePhase phase) {
+  const bool emitting = phase == ParticlePhase::emit;
+  a.emitters = emitters + step.first_emitter;
+  a.emitter_count = step.emitter_count;
+  a.new_count = step.new_count;
+  a.step = step.step;
+  a.first_live_slot = emitting ? step.emit_first_live_slot : step.first_live_slot;
+  a.live_count = emitting ? step.emit_live_count : step.live_count;
+  return a;
+}
 
 BLEEDSIM_HD inline bool is_alive(const ParticleLifetime& l, std::uint32_t age) { return age < l.steps; }
 BLEEDSIM_HD inline bool is_alive(const ParticleModel& m, std::uint32_t age) { return is_alive(m.lifetime, age); }
@@ -235,12 +278,12 @@ BLEEDSIM_HD inline std::uint32_t cell_key_of(const ParticleArrays& p, const Part
   return std::uint32_t(cy) * std::uint32_t(m.cells_x) + std::uint32_t(cx);
 }
 
-// Sorted position i opens or closes its cell's range when its key differs from its neighbour's.
-BLEEDSIM_HD inline void mark_cell_range(const ParticleArrays& p, const ParticleModel& m, int i) {
-  const std::uint32_t key = p.sorted_key[i];
-  if (key == sentinel_key(m)) return;
-  if (i == 0 || p.sorted_key[i - 1] != key) p.cell_start[key] = std::uint32_t(i);
-  if (i == p.capacity - 1 || p.sorted_key[i + 1] != key) p.cell_end[key] = std::uint32_t(i + 1);
+// The n-th live slot in ascending slot order, n < live_count (the live range wraps round the ring):
+// the order the bin takes them in, and so the order it keeps within a cell.
+BLEEDSIM_HD inline int nth_live_slot_ascending(const ParticleArgs& a, int n) {
+  const int past_end = int(a.first_live_slot) + a.live_count - a.arrays.capacity;
+  const int wrapped = past_end > 0 ? past_end : 0;
+  return n < wrapped ? n : int(a.first_live_slot) + (n - wrapped);
 }
 
 // The sorted copies collide reads, so no thread reads a slot another thread is writing.
@@ -361,22 +404,13 @@ BLEEDSIM_HD inline void finish_pair_sums(const ParticleArrays& p, const Particle
 }
 
 // The sorted positions [begin, end) of the particles in cells x0 … x1 of row y: the cells of a row
-// are consecutive keys, so their particles are one run of the sorted order (empty cells mark no
-// range: start = end, at 0 on the GPU and wherever the count reached on the CPU).
+// are consecutive keys, so their particles are one run of the sorted order.
 struct SortedRun {
   std::uint32_t begin, end;
 };
 BLEEDSIM_HD inline SortedRun row_run(const ParticleArrays& p, const ParticleModel& m, int y, int x0, int x1) {
-  SortedRun run{0xffffffffu, 0u};
-  for (int x = x0; x <= x1; ++x) {
-    const std::uint32_t cell = std::uint32_t(y) * std::uint32_t(m.cells_x) + std::uint32_t(x);
-    const std::uint32_t start = p.cell_start[cell], end = p.cell_end[cell];
-    if (start == end) continue;
-    run.begin = start < run.begin ? start : run.begin;
-    run.end = end > run.end ? end : run.end;
-  }
-  if (run.begin > run.end) run.begin = run.end;
-  return run;
+  const std::uint32_t row = std::uint32_t(y) * std::uint32_t(m.cells_x);
+  return {p.cell_start[row + std::uint32_t(x0)], p.cell_start[row + std::uint32_t(x1) + 1]};
 }
 
 // The pair forces on the particle at sorted position i from every neighbour in the 3 × 3 cells
@@ -498,7 +532,10 @@ BLEEDSIM_HD inline float fade_alpha(const ParticleLifetime& l, std::uint32_t age
 // The twins: one phase of a step over host memory (CPU reference) or device memory (CUDA).
 void cpu_twin(ParticlePhase phase, const ParticleArgs& args, int threads);
 void cuda_twin(ParticlePhase phase, const ParticleArgs& args);
-// Bytes of temporary storage the CUDA sort needs for `capacity` keys of `key_bits` bits.
-std::size_t particle_sort_scratch_cuda(int capacity, int key_bits);
+// Every phase of every step of a run, in order.
+void cpu_twin(const ParticleSteps& steps, int threads);
+void cuda_twin(const ParticleSteps& steps);
+// Bytes of temporary storage the CUDA bin needs for `capacity` particles in `cells` cells.
+std::size_t particle_sort_scratch_cuda(int capacity, std::uint32_t cells);
 
 }  // namespace bleedsim

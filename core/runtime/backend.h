@@ -52,8 +52,8 @@ class Backend {
 #endif
     cpu_twin(a..., cpu_threads_);
   }
-  // Temporary storage the particle sort needs here (none on the CPU, CUB's on the GPU).
-  virtual std::size_t particle_sort_scratch_bytes(int capacity, int key_bits) const = 0;
+  // Temporary storage the particle bin needs here (none on the CPU; on the GPU its counts and places).
+  virtual std::size_t particle_sort_scratch_bytes(int capacity, std::uint32_t cells) const = 0;
 
   std::uint64_t launches(const std::string& stage) const;
   std::size_t bytes_in_use() const { return *bytes_in_use_; }
