@@ -25,6 +25,7 @@ struct RunOptions {
   std::optional<int> contact_sheet;    // overrides [output].contact_sheet
   bool hdf5 = true;
   bool quiet = false;
+  int output_threads = 0;              // threads encoding the frames; 0: one per hardware thread
 };
 
 int run_command(const RunOptions& options);

@@ -76,6 +76,10 @@ int main(int argc, char** argv) {
                       "write contact_sheet.png: N frames from the first to the last in a grid (0: none)")
       ->check(CLI::Range(0, 64));
   run_cmd->add_flag("--no-hdf5", no_hdf5, "do not write frames.h5");
+  run_cmd->add_option("--output-threads", run.output_threads,
+                      "threads deflating and encoding the frames for the files (0: one per hardware thread)")
+      ->check(CLI::Range(0, 4096))
+      ->capture_default_str();
   run_cmd->add_flag("-q,--quiet", run.quiet, "print nothing but errors");
 
   std::string validate_path;

@@ -10,9 +10,11 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "cli/commands.h"
+#include "cli/frame_output.h"
 #include "cli/output_folder.h"
 #include "cli/output_queue.h"
 #include "cli/progress.h"
@@ -20,7 +22,6 @@
 #include "core/runtime/build_info.h"
 #include "core/io/contact_sheet.h"
 #include "core/io/hdf5_writer.h"
-#include "core/io/png_writer.h"
 #include "core/mesh/view_render.h"
 #include "core/io/scenario.h"
 #include "core/runtime/simulation.h"
@@ -76,22 +77,6 @@ std::vector<std::pair<std::string, std::string>> provenance(const Simulation& si
           {"scenario_text", scenario.text}};
 }
 
-bool png_due(long frame, long frames, int every) {
-  return every > 0 && (frame % every == 0 || frame == frames - 1);
-}
-
-std::string view_png_name(long frame) {
-  char name[32];
-  std::snprintf(name, sizeof name, "view_%06ld.png", frame);
-  return name;
-}
-
-std::string png_name(long frame) {
-  char name[32];
-  std::snprintf(name, sizeof name, "frame_%06ld.png", frame);
-  return name;
-}
-
 // What the replay will play: the trace, its repairs, and how its span meets the run's.
 void describe_replay(const Scene& s) {
   const Trace& trace = *s.trace;
@@ -115,9 +100,17 @@ std::string output_dir_key(const RunOptions& options, const Scenario& scenario) 
   return scenario.places.count("output.dir") ? "output.dir" : "scene.name";
 }
 
-// Frames made and waiting for the output's thread: the simulation runs at most this far ahead of
-// the files, and holds this many copies of a frame's fields besides the one being written.
-constexpr std::size_t kFramesQueued = 2;
+// What the frames the output holds may take: their fields' copies and, about as large at most,
+// their encodings.
+constexpr std::size_t kOutputMemoryBytes = std::size_t(1) << 30;
+
+// Frames the output holds at once: one for each worker to encode, the one being written and the
+// next, within kOutputMemoryBytes; at least two, so that one is encoded while the other is written.
+// The simulation runs at most this far ahead of the files.
+std::size_t frames_in_flight(int workers, std::size_t frame_bytes) {
+  const std::size_t by_memory = kOutputMemoryBytes / std::max<std::size_t>(1, 2 * frame_bytes);
+  return std::max<std::size_t>(2, std::min(std::size_t(workers) + 2, by_memory));
+}
 
 // A failure while writing: the frames finished so far stay in the partial folder, and the last
 // whole run in the folder is untouched. One line, as every failure is.
@@ -183,40 +176,35 @@ int run_command(const RunOptions& options) {
   const Clock::time_point start = Clock::now();
   double simulate_s = 0.0;
   std::vector<double> frame_seconds, tick_seconds;
-  long pngs = 0;  // counted on the output's thread; read once it is drained
   // Frames written so far: a write that fails (a full disk, a file size limit, an I/O error) ends the run
   // with the frames before it kept, and leaves the folder's last whole run as it was.
   long written = 0;
+  long pngs = 0;  // PNG files written, counted on the output's writer thread
   try {
     std::unique_ptr<Hdf5FrameWriter> writer;
     if (options.hdf5)
       writer = std::make_unique<Hdf5FrameWriter>(files.partial("frames.h5").string(), specs,
                                                  provenance(sim, scenario), out.deflate_level, s.trace.has_value());
     if (png_every > 0) fs::create_directory(files.partial("png"));
-    // A frame's outputs, on the output's thread, frame after frame: the simulation goes on meanwhile.
-    const auto write_frame = [&](const FrameJob& job) {
-      const long k = job.frame;
-      const std::vector<std::uint8_t>& rgba = job.fields[0];
-      if (writer) {
-        std::vector<const void*> pointers;
-        for (const std::vector<std::uint8_t>& field : job.fields) pointers.push_back(field.data());
-        writer->append(job.time_s, pointers, job.ticks);
-      }
-      if (png_due(k, frames, png_every)) {
-        write_png_rgba((files.partial("png") / png_name(k)).string(), s.domain.width_px, s.domain.height_px,
-                       rgba.data());
-        ++pngs;
-        if (view) {
-          const Image seen = view_of(rgba);
-          write_png_rgba((files.partial("png") / view_png_name(k)).string(), seen.width, seen.height, seen.rgba.data());
-          ++pngs;
-        }
-      }
-      if (sheet && sheet->wants(k)) sheet->add(k, rgba.data());
-      if (view_sheet && view_sheet->wants(k)) view_sheet->add(k, view_of(rgba).rgba.data());
-    };
+    // Each frame's outputs, encoded on the output's workers and written on its writer thread, frame
+    // after frame: the simulation goes on meanwhile.
+    FrameOutputs outputs;
+    outputs.hdf5 = writer.get();
+    outputs.png_folder = files.partial("png");
+    outputs.png_every = png_every;
+    outputs.frames = frames;
+    outputs.width = s.domain.width_px;
+    outputs.height = s.domain.height_px;
+    if (view) outputs.view = view_of;
+    outputs.sheet = sheet.get();
+    outputs.view_sheet = view_sheet.get();
+    FrameOutput frame_output(std::move(outputs));
+    const int workers = options.output_threads > 0 ? options.output_threads
+                                                   : int(std::max(1u, std::thread::hardware_concurrency()));
+    std::size_t frame_bytes = 0;
+    for (const FieldLayout& spec : specs) frame_bytes += spec.bytes();
     {
-      OutputQueue output(kFramesQueued, write_frame);
+      OutputQueue output(workers, frames_in_flight(workers, frame_bytes), frame_output.work());
       try {
         for (long k = 0; k < frames && !interrupted; ++k) {
           const Clock::time_point step_start = Clock::now();
@@ -249,6 +237,7 @@ int run_command(const RunOptions& options) {
       }
       written = output.written();
     }
+    pngs = frame_output.pngs();
     progress.clear();
     if (writer) writer->finish(written == frames);
     // An interrupted run's sheet shows the frames it reached; the cells after stay dark.

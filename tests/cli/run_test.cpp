@@ -71,18 +71,24 @@ TEST(Run, WritesAContactSheetOfTheFramesAskedFor) {
   EXPECT_EQ(png_size(out / "contact_sheet.png"), std::make_pair(2 * 160 + 3 * 4, 2 * 120 + 3 * 4));
 }
 
+// The turbinate scene (a tissue mesh and a [view]) for a third of a second, ten frames, written into
+// `dir`; returns its path.
+fs::path short_turbinate(const fs::path& dir) {
+  std::string text = read_bytes(scenario("turbinate.toml"));
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"duration_s = 6.0", "duration_s = 0.34"},
+                                 {"\"meshes/turbinate.obj\"", "\"" + scenario("meshes/turbinate.obj") + "\""}}) {
+    EXPECT_NE(text.find(from), std::string::npos) << from;
+    if (text.find(from) != std::string::npos) text.replace(text.find(from), from.size(), to);
+  }
+  write_text(dir / "short.toml", text);
+  return dir / "short.toml";
+}
+
 TEST(Run, ASceneWithAViewDrawsTheMeshBesideEachPngAndInASheet) {
   // The turbinate scene for a third of a second: PNGs of frames 0, 5 and 9, each with its view, and
   // both contact sheets; validate names the mesh and how the texture stretches over it.
   const fs::path dir = scratch_folder(), out = dir / "turbinate";
-  std::string text = read_bytes(scenario("turbinate.toml"));
-  for (const auto& [from, to] : {std::pair<std::string, std::string>{"duration_s = 6.0", "duration_s = 0.34"},
-                                 {"\"meshes/turbinate.obj\"", "\"" + scenario("meshes/turbinate.obj") + "\""}}) {
-    ASSERT_NE(text.find(from), std::string::npos) << from;
-    text.replace(text.find(from), from.size(), to);
-  }
-  write_text(dir / "short.toml", text);
-  const CliResult result = run_cli("run '" + (dir / "short.toml").string() + "' --backend cpu --png-every 5 " +
+  const CliResult result = run_cli("run '" + short_turbinate(dir).string() + "' --backend cpu --png-every 5 " +
                                    "--contact-sheet 2 --out '" + out.string() + "'");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   for (const char* file : {"png/frame_000000.png", "png/view_000000.png", "png/view_000005.png", "png/view_000009.png",
@@ -106,6 +112,23 @@ TEST(Run, TheSameSceneTwiceGivesByteIdenticalFiles) {
   EXPECT_EQ(read_bytes(dir / "a/frames.h5"), read_bytes(dir / "b/frames.h5"));
   for (const std::string& png : files_in(dir / "a/png"))
     EXPECT_EQ(read_bytes(dir / "a/png" / png), read_bytes(dir / "b/png" / png)) << png;
+}
+
+TEST(Run, AnyNumberOfOutputThreadsWritesTheSameBytes) {
+  // Frames encoded on one worker, one after another, and on six, several frames at once and out of
+  // order: the same frames.h5, PNGs (frames and views) and contact sheets, byte for byte.
+  const fs::path dir = scratch_folder(), toml = short_turbinate(dir);
+  for (const char* threads : {"1", "6"}) {
+    const CliResult result = run_cli("run '" + toml.string() + "' --backend cpu --png-every 3 --contact-sheet 4 -q " +
+                                     "--output-threads " + threads + " --out '" + (dir / threads).string() + "'");
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+  }
+  for (const char* file : {"frames.h5", "contact_sheet.png", "view_contact_sheet.png"})
+    EXPECT_EQ(read_bytes(dir / "1" / file), read_bytes(dir / "6" / file)) << file;
+  EXPECT_EQ(files_in(dir / "1/png").size(), 8u);  // frames 0, 3, 6 and 9, each with its view
+  EXPECT_EQ(files_in(dir / "1/png"), files_in(dir / "6/png"));
+  for (const std::string& png : files_in(dir / "1/png"))
+    EXPECT_EQ(read_bytes(dir / "1/png" / png), read_bytes(dir / "6/png" / png)) << png;
 }
 
 TEST(Run, ThreadCountsGiveTheSameHashes) {
