@@ -3,7 +3,10 @@
 // simulation hands over a copy of each frame's fields and goes on to the next. Worker threads encode
 // the frames in flight, several at once: each field's HDF5 chunk through its filters, the PNGs. One
 // writer thread then writes them to the files one at a time, strictly in the order they came, so the
-// files are those a run writing them itself would make, byte for byte.
+// files are those a run writing them itself would make, byte for byte. The threads are the queue's,
+// kept for the run, not reference_cpu's WorkerPool: that runs one fork-join loop at a time, its
+// caller waiting, and it is the CPU simulation's, whose loops would start threads of their own
+// whenever the output held it.
 #include <condition_variable>
 #include <cstddef>
 #include <cstdint>
