@@ -40,16 +40,24 @@ class CudaEvent {
 
 class CudaBackend final : public Backend {
  public:
-  CudaBackend() {
-    BLEEDSIM_CUDA_CHECK(cudaGetDevice(&device_));
+  explicit CudaBackend(int device) : device_(device) {
+    const int count = cuda_device_count();
+    if (device < 0 || device >= count) {
+      const std::string seen = count == 0   ? "none"
+                               : count == 1 ? "1 device (0)"
+                                            : std::to_string(count) + " devices (0 to " + std::to_string(count - 1) + ")";
+      throw std::runtime_error("CUDA device " + std::to_string(device) + " was asked for; this process sees " + seen);
+    }
+    // Allocations, copies and launches go to the calling thread's current device.
+    BLEEDSIM_CUDA_CHECK(cudaSetDevice(device_));
     BLEEDSIM_CUDA_CHECK(cudaGetDeviceProperties(&properties_, device_));
   }
 
   BackendKind kind() const override { return BackendKind::cuda; }
   std::string device_name() const override {
     char text[320];
-    std::snprintf(text, sizeof text, "%s (sm_%d%d, %.0f GiB)", properties_.name, properties_.major,
-                  properties_.minor, properties_.totalGlobalMem / 1073741824.0);
+    std::snprintf(text, sizeof text, "%s (device %d: sm_%d%d, %.0f GiB)", properties_.name, device_,
+                  properties_.major, properties_.minor, properties_.totalGlobalMem / 1073741824.0);
     return text;
   }
   void upload(void* dst, const void* src, std::size_t bytes) override {
@@ -93,7 +101,7 @@ class CudaBackend final : public Backend {
 
 }  // namespace
 
-std::unique_ptr<Backend> make_cuda_backend() { return std::make_unique<CudaBackend>(); }
+std::unique_ptr<Backend> make_cuda_backend(int device) { return std::make_unique<CudaBackend>(device); }
 
 bool cuda_device_available(std::string* why_not) {
   int count = 0;
@@ -112,6 +120,15 @@ bool cuda_device_available(std::string* why_not) {
     return false;
   }
   return true;
+}
+
+int cuda_device_count() {
+  int count = 0;
+  if (cudaGetDeviceCount(&count) != cudaSuccess) {
+    cudaGetLastError();  // clear the error so later calls start clean
+    return 0;
+  }
+  return count;
 }
 
 }  // namespace bleedsim

@@ -31,9 +31,9 @@ SelectedBackend select_backend(const BackendChoice& choice) {
   const bool cuda = cuda_device_available(&why_not);
   if (choice.want == Want::cuda) {
     if (!cuda) throw std::runtime_error("the cuda backend is not available: " + why_not);
-    return {make_cuda_backend(), "asked for cuda"};
+    return {make_cuda_backend(choice.cuda_device), "asked for cuda"};
   }
-  if (cuda) return {make_cuda_backend(), "auto: CUDA device found"};
+  if (cuda) return {make_cuda_backend(choice.cuda_device), "auto: CUDA device found"};
   return {make_cpu_backend(choice.cpu_threads), "auto: " + why_not};
 }
 

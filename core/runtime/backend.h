@@ -76,6 +76,7 @@ class Backend {
 struct BackendChoice {
   enum class Want { automatic, cpu, cuda } want = Want::automatic;
   int cpu_threads = 0;  // 0: one per hardware thread
+  int cuda_device = 0;  // which device the cuda backend runs on (each MPI rank its own: Ranks::cuda_device)
 };
 
 struct SelectedBackend {
@@ -83,13 +84,19 @@ struct SelectedBackend {
   std::string why;  // e.g. "auto: no CUDA device (cudaErrorNoDevice)", shown to the user
 };
 
-// Throws std::runtime_error when "cuda" is asked for and cannot be had.
+// Throws std::runtime_error when "cuda" is asked for and cannot be had, and when the CUDA backend
+// is chosen (asked for, or "auto" with a device present) and its device index is not one there is.
 SelectedBackend select_backend(const BackendChoice& choice);
 
 // Implemented by reference_cpu/ and kernels/ (kernels/no_cuda.cpp in a build without nvcc).
 std::unique_ptr<Backend> make_cpu_backend(int threads);
-std::unique_ptr<Backend> make_cuda_backend();
+// On CUDA device `device` (0 to cuda_device_count() - 1; else std::runtime_error naming the count),
+// which it makes current on the calling thread: drive it from that thread, as CUDA's current
+// device is per thread.
+std::unique_ptr<Backend> make_cuda_backend(int device = 0);
 // True when this build has the CUDA backend and a usable device; otherwise says why not.
 bool cuda_device_available(std::string* why_not);
+// The CUDA devices this process sees (after CUDA_VISIBLE_DEVICES); 0 without the backend or a device.
+int cuda_device_count();
 
 }  // namespace bleedsim
