@@ -1,0 +1,23 @@
+# MPI, for `mpirun -n K bleedsim study` (core/scaleout/, docs/scale-out.md): AUTO (when found), ON or
+# OFF. Open MPI from Debian (scripts/setup); the build works without it, and says what that means.
+set(BLEEDSIM_MPI AUTO CACHE STRING "Spread bleedsim study over MPI ranks: AUTO (when MPI is found), ON or OFF")
+set_property(CACHE BLEEDSIM_MPI PROPERTY STRINGS AUTO ON OFF)
+if(NOT BLEEDSIM_MPI MATCHES "^(AUTO|ON|OFF)$")
+  message(FATAL_ERROR "bleedsim: BLEEDSIM_MPI must be AUTO, ON or OFF (got '${BLEEDSIM_MPI}')")
+endif()
+set(BLEEDSIM_HAVE_MPI OFF)
+if(NOT BLEEDSIM_MPI STREQUAL "OFF")
+  # The C API: MPI's C++ bindings are gone from the standard since MPI-3.
+  if(BLEEDSIM_MPI STREQUAL "ON")
+    find_package(MPI COMPONENTS C REQUIRED)
+  else()
+    find_package(MPI COMPONENTS C QUIET)
+  endif()
+  if(MPI_C_FOUND)
+    set(BLEEDSIM_HAVE_MPI ON)
+    message(NOTICE "bleedsim: MPI ON (MPI ${MPI_C_VERSION}, ${MPI_C_LIBRARIES}; launcher ${MPIEXEC_EXECUTABLE})")
+  endif()
+endif()
+if(NOT BLEEDSIM_HAVE_MPI)
+  message(NOTICE "bleedsim: built without MPI: bleedsim study runs in one process; --shard and merge still work")
+endif()
