@@ -66,6 +66,17 @@ Ranks::~Ranks() {
 #endif
 }
 
+bool Ranks::all_ok(bool mine) const {
+#if BLEEDSIM_HAVE_MPI
+  if (size_ > 1) {
+    int ok = mine ? 1 : 0, all = 0;
+    MPI_Allreduce(&ok, &all, 1, MPI_INT, MPI_LAND, MPI_COMM_WORLD);
+    return all != 0;
+  }
+#endif
+  return mine;
+}
+
 std::string Ranks::mpi_library() {
 #if BLEEDSIM_HAVE_MPI
   char text[MPI_MAX_LIBRARY_VERSION_STRING] = {};

@@ -31,6 +31,11 @@ class Ranks {
   // (after CUDA_VISIBLE_DEVICES); -1 when it sees none. Pass it on in BackendChoice::cuda_device.
   int cuda_device() const { return cuda_device_; }
 
+  // True when every rank passes true (a logical and over the ranks; call it on every rank). A check
+  // only rank 0 makes, such as taking its output folder, must reach the others this way before the
+  // jobs start: a rank 0 that simply threw would leave them waiting for it in run_jobs.
+  bool all_ok(bool mine) const;
+
   // "Open MPI v4.1.4, ..." for `bleedsim info`; empty in a build without MPI.
   static std::string mpi_library();
 

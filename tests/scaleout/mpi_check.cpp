@@ -5,6 +5,8 @@
 //   fail             the last rank's first job throws after 0.5 s while rank 0's jobs take 0.3 s each:
 //                    every rank must end with exit 1, rank 0 printing the failure, and rank 0 must
 //                    stop after the job it was running then, not run all of its own;
+//   refuse           rank 0 finds its output unwritable before the jobs (Ranks::all_ok): every rank
+//                    must end with exit 2 without running a job;
 //   shard i/K DIR    the shard's jobs over the ranks; rank 0 writes DIR/<shard file name>;
 //   merge DIR OUT    every shard file in DIR merged, then written to OUT as `run` writes it.
 // Each rank says on stderr how it ended ("rank 1 of 2: exit 1 after 0 of its 11 jobs").
@@ -105,6 +107,19 @@ int fail_mode(const Ranks& ranks) {
   return code;
 }
 
+int refuse_mode(const Ranks& ranks) {
+  // As a command whose rank 0 finds its output folder in use: only rank 0 knows.
+  const bool ready = !ranks.is_root();
+  std::size_t ran = 0;
+  if (ranks.all_ok(ready))
+    run_jobs(ranks, test::toy_costs(kJobs), [&](std::size_t job) {
+      ++ran;
+      return test::toy_record(job);
+    }, kOptions);
+  std::fprintf(stderr, "rank %d of %d: exit 2 after %zu jobs\n", ranks.rank(), ranks.size(), ran);
+  return 2;
+}
+
 int shard_mode(const Ranks& ranks, const std::string& which, const std::string& dir) {
   const ShardId shard = parse_shard(which);
   const std::vector<double> costs = test::toy_costs(kJobs);
@@ -138,9 +153,10 @@ int main(int argc, char** argv) {
     try {
       if (mode == "run" && args.size() == 2) code = run_mode(ranks, args[1]);
       else if (mode == "fail" && args.size() == 1) code = fail_mode(ranks);
+      else if (mode == "refuse" && args.size() == 1) code = refuse_mode(ranks);
       else if (mode == "shard" && args.size() == 3) code = shard_mode(ranks, args[1], args[2]);
       else if (mode == "merge" && args.size() == 3 && ranks.size() == 1) code = merge_mode(args[1], args[2]);
-      else std::fprintf(stderr, "usage: mpi_check run OUT | fail | shard i/K DIR | merge DIR OUT (one rank)\n");
+      else std::fprintf(stderr, "usage: mpi_check run OUT | fail | refuse | shard i/K DIR | merge DIR OUT (one rank)\n");
     } catch (const std::exception& e) {
       std::fprintf(stderr, "mpi_check: rank %d: %s\n", ranks.rank(), e.what());
       code = 1;

@@ -5,7 +5,9 @@
    are 0 bytes to 3 MiB, sent in 64 KiB pieces), and so does `mpirun -n 1`;
 2. a job that throws on rank 1 ends both ranks with exit 1, rank 0 printing the failure, and
    rank 0 stops before running all of its own jobs; nothing hangs;
-3. shards 0/3 (one process), 1/3 (over two ranks) and 2/3 (`mpirun -n 1`), merged, equal the
+3. when rank 0 alone refuses to start (its output folder taken), both ranks end with exit 2
+   and neither runs a job;
+4. shards 0/3 (one process), 1/3 (over two ranks) and 2/3 (`mpirun -n 1`), merged, equal the
    single process's records.
 
 Run: mpi_check.py --mpirun MPIRUN --check MPI_CHECK --scratch DIR [--mpirun-flag FLAG ...]
@@ -94,7 +96,14 @@ def main():
     expect(stopped is not None and int(stopped.group(1)) < int(stopped.group(2)),
            "rank 0 stops before the end of its own jobs once rank 1 has failed")
 
-    # 3. Three shards, written apart (one of them over two ranks), then merged.
+    # 3. Rank 0 alone refuses before the jobs.
+    done = run(mpirun(2, "refuse"), env)
+    output = done.stdout + done.stderr
+    expect(done.returncode != 0, "a refusal on rank 0 ends mpirun with a non-zero exit")
+    for rank in (0, 1):
+        expect(f"rank {rank} of 2: exit 2 after 0 jobs" in output, f"rank {rank} ends with exit 2 without running a job")
+
+    # 4. Three shards, written apart (one of them over two ranks), then merged.
     shards = os.path.join(scratch, "shards")
     os.makedirs(shards)
     for command in ([args.check, "shard", "0/3", shards], mpirun(2, "shard", "1/3", shards), mpirun(1, "shard", "2/3", shards)):

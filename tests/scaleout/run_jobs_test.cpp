@@ -30,6 +30,8 @@ TEST(Ranks, WithoutALauncherThisProcessIsRankZeroOfOne) {
   EXPECT_EQ(ranks.local_rank(), 0);
   EXPECT_EQ(ranks.host(), this_host());
   EXPECT_EQ(ranks.cuda_device(), cuda_device_count() > 0 ? 0 : -1);
+  EXPECT_TRUE(ranks.all_ok(true));
+  EXPECT_FALSE(ranks.all_ok(false));
 }
 
 TEST(RunJobs, AloneRunsEveryJobInOrderAndSaysWhere) {
