@@ -233,7 +233,7 @@ std::vector<JobResult> run_jobs_over_mpi(const Ranks& ranks, const std::vector<s
       if (r != ranks.rank()) MPI_Recv(nullptr, 0, MPI_BYTE, r, kTagStop, MPI_COMM_WORLD, MPI_STATUS_IGNORE);
     MPI_Waitall(int(stops.size()), stops.data(), MPI_STATUSES_IGNORE);
   } catch (const std::exception& e) {
-    std::fprintf(stderr, "bleedsim: rank %d: gathering the jobs' records failed: %s; ending every rank\n",
+    std::fprintf(stderr, "bleedsim: rank %d: spreading the jobs failed outside them: %s; ending every rank\n",
                  ranks.rank(), e.what());
     std::fflush(stderr);
     MPI_Abort(MPI_COMM_WORLD, 1);

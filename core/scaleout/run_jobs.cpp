@@ -49,7 +49,8 @@ std::vector<JobResult> run_jobs(const Ranks& ranks, const std::vector<double>& c
                                   " (job " + std::to_string(jobs[i]) + " at place " + std::to_string(i) + ")");
     job_costs.push_back(costs[jobs[i]]);
   }
-  // Checked on every rank alike, before any of them runs a job.
+  // These checks, and the costs' in assign_jobs, throw on every rank alike (the same arguments)
+  // before any rank runs a job or sends a message: no rank is left waiting.
   const std::vector<int> owners = assign_jobs(job_costs, ranks.size());
 
 #if BLEEDSIM_HAVE_MPI
