@@ -10,6 +10,7 @@
 #include "core/runtime/backend.h"
 #include "core/runtime/simulation.h"
 #include "core/io/trace_synth.h"
+#include "core/study/study.h"
 
 namespace bleedsim::cli {
 
@@ -38,6 +39,8 @@ struct StudyOptions {
   std::string backend = "auto";        // auto (CUDA and CPU where a device is, else CPU), cpu, cuda, both
   std::optional<double> duration_s;    // a shorter run than the scene's
   std::optional<std::string> out_dir;  // default out/study/<scene>
+  int seeds = kDefaultSeeds;           // each setting's ensemble
+  int threads = 0;                     // the CPU backend's threads; 0: one per hardware thread
   bool plots = true;
   bool quiet = false;
 };

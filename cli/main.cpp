@@ -97,21 +97,30 @@ int main(int argc, char** argv) {
   std::string knob_names;
   for (const bleedsim::Knob& knob : bleedsim::knobs()) knob_names += std::string(knob_names.empty() ? "" : ", ") + knob.name;
   CLI::App* study_cmd = app.add_subcommand(
-      "study", "what accuracy costs in time: the scene at each setting of its accuracy knobs, timed and "
-               "compared with the finest (docs/accuracy.md)");
+      "study", "what accuracy costs in time, and whether the reference is converged: each accuracy knob "
+               "climbed as a ladder, every setting an ensemble over seeds, timed and compared with the reference "
+               "(docs/accuracy.md)");
   study_cmd->add_option("scenario", study.scenario, "scenario file (.toml)")->required();
   study_cmd->add_option("-k,--knob", study.knobs,
-                        "a knob and the values to try, as name=v1,v2,...; repeat for more (default: every knob "
-                        "the scene has, over its default range). Knobs: " + knob_names);
+                        "a knob and its ladder's levels, as name=v1,v2,...; the finest is the reference's; repeat "
+                        "for more (default: every knob the scene has, at its default levels). Knobs: " + knob_names +
+                            " (the particle model has no solver iterations: one neighbour pass a sub-step)");
   study_cmd->add_option("-b,--backend", study.backend,
                         "auto (CUDA and the CPU where a device is, else the CPU), cpu, cuda or both")
       ->check(CLI::IsMember({"auto", "cpu", "cuda", "both"}))
+      ->capture_default_str();
+  study_cmd->add_option("-s,--seeds", study.seeds,
+                        "runs of each setting, the scene's seed and the next ones (at least 2: a confidence "
+                        "interval needs two)")
+      ->capture_default_str();
+  study_cmd->add_option("-j,--threads", study.threads, "CPU threads for the cpu backend (0: one per hardware thread)")
+      ->check(CLI::Range(0, 4096))
       ->capture_default_str();
   study_cmd->add_option("--duration-s", study.duration_s, "run each setting this long instead of the scene's duration")
       ->check(CLI::Range(0.001, 86400.0));
   study_cmd->add_option("-o,--out", study.out_dir, "output folder (default out/study/<scene>)");
   bool no_plots = false;
-  study_cmd->add_flag("--no-plots", no_plots, "write study.csv and study.h5 only (plot later with scripts/plot-study)");
+  study_cmd->add_flag("--no-plots", no_plots, "write study.csv, ladders.csv and study.h5 only (plot later with scripts/plot-study)");
   study_cmd->add_flag("-q,--quiet", study.quiet, "print only the files written and errors");
 
   CLI::App* info_cmd = app.add_subcommand("info", "version, build flags and available backends");

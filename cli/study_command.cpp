@@ -1,6 +1,7 @@
-// bleedsim study: what accuracy costs in time. The scene at each setting of its accuracy knobs, on
-// each backend, timed and compared frame by frame with the reference at the finest settings;
-// study.csv, study.h5 and the plots (scripts/plot-study) in the output folder (docs/accuracy.md).
+// bleedsim study: what accuracy costs in time, and whether the reference is converged. The scene's
+// knobs each climbed as a ladder, every setting an ensemble over seeds, run as independent jobs,
+// analysed from their records; study.csv, ladders.csv, study.h5 and the plots (scripts/plot-study)
+// in the output folder (docs/accuracy.md).
 #include <unistd.h>
 
 #include <cmath>
@@ -24,19 +25,15 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// "substeps=10,20,40" as a knob and its values.
-KnobSweep parse_knob(const std::string& text) {
+// "substeps=10,20,40" as a knob and its levels.
+KnobLevels parse_knob(const std::string& text) {
   const std::size_t equals = text.find('=');
   const std::string name = text.substr(0, equals);
   const Knob* knob = find_knob(name);
-  if (!knob) {
-    std::string known;
-    for (const Knob& k : knobs()) known += std::string(known.empty() ? "" : ", ") + k.name;
-    throw InputError({}, "--knob", "no knob '" + name + "' (known: " + known + ")");
-  }
+  if (!knob) throw InputError({}, "--knob", unknown_knob_message(name));
   if (equals == std::string::npos || equals + 1 == text.size())
     throw InputError({}, "--knob", "write it as " + name + "=v1,v2,... (got '" + text + "')");
-  KnobSweep sweep{knob, {}};
+  KnobLevels levels{knob, {}};
   std::size_t at = equals + 1;
   while (at <= text.size()) {
     const std::size_t comma = std::min(text.find(',', at), text.size());
@@ -45,10 +42,10 @@ KnobSweep parse_knob(const std::string& text) {
     const double v = std::strtod(value.c_str(), &end);
     if (value.empty() || *end != '\0')
       throw InputError({}, std::string("--knob ") + name, "expected numbers separated by commas, got '" + value + "'");
-    sweep.values.push_back(v);
+    levels.levels.push_back(v);
     at = comma + 1;
   }
-  return sweep;
+  return levels;
 }
 
 std::vector<BackendKind> backends_for(const std::string& which) {
@@ -60,7 +57,7 @@ std::vector<BackendKind> backends_for(const std::string& which) {
     return which == "cuda" ? std::vector<BackendKind>{BackendKind::cuda}
                            : std::vector<BackendKind>{BackendKind::cuda, BackendKind::cpu};
   }
-  // auto: the GPU when there is one (and so the reference runs there), the CPU always.
+  // auto: the GPU when there is one, the CPU always.
   return cuda ? std::vector<BackendKind>{BackendKind::cuda, BackendKind::cpu} : std::vector<BackendKind>{BackendKind::cpu};
 }
 
@@ -74,26 +71,46 @@ std::string plot_command(const fs::path& folder) {
 }
 
 // Three significant digits, or nothing where there is no number.
-std::string short_number(double v, bool shown = true) {
-  if (!shown || std::isnan(v)) return "";
-  return format_significant(v, 3);
+std::string short_number(double v) { return std::isnan(v) ? "" : format_significant(v, 3); }
+std::string plus_minus(const Estimate& e) {
+  if (std::isnan(e.value)) return "";
+  return short_number(e.value) + (std::isnan(e.lo) ? "" : " ±" + short_number(e.half_width()));
 }
 
-void print_table(const std::vector<StudyRun>& runs) {
-  // The errors against the reference (all knobs finest), then against this knob's finest alone.
-  std::printf("%-16s %8s %-16s %-5s %10s %12s %10s %12s %10s  %s\n", "knob", "value", "role", "on", "ms/frame",
-              "film L1 mm", "PSNR dB", "own L1 mm", "own PSNR", "status");
-  for (const StudyRun& run : runs) {
-    const StudySummary s = summarize(run);
-    const bool ok = run.status == "ok";
-    const bool own = ok && !run.knob_errors.empty();
-    std::printf("%-16s %8s %-16s %-5s %10s %12s %10s %12s %10s  %s\n", run.setting.knob.c_str(),
-                short_number(run.setting.value, run.setting.role.rfind("reference", 0) != 0).c_str(),
-                run.setting.role.c_str(), to_string(run.backend), short_number(s.ms_p50, ok).c_str(),
-                short_number(s.mean.film_l1_mm, ok).c_str(), short_number(s.psnr_db, ok).c_str(),
-                short_number(s.knob_mean.film_l1_mm, own).c_str(), short_number(s.knob_psnr_db, own).c_str(),
-                run.status.c_str());
+std::size_t metric_index(Metric m) {
+  for (std::size_t i = 0; i < metrics().size(); ++i)
+    if (metrics()[i].metric == m) return i;
+  return 0;
+}
+
+void print_results(const Study& study, const StudyResult& result) {
+  // The primary field: the film where the scene has one, else the stain.
+  const bool film = !std::isnan(result.seed_spread[metric_index(Metric::film)].value);
+  const std::size_t primary = metric_index(film ? Metric::film : Metric::stain);
+  const char* unit = metrics()[primary].unit;
+  std::printf("%-16s %8s %-10s %-5s %10s %16s %14s %18s  %s\n", "knob", "value", "role", "on", "ms/frame",
+              film ? "film L1 mm" : "stain L1", "PSNR dB", (std::string("mean dist ") + unit).c_str(), "status");
+  for (const SettingResult& s : result.settings) {
+    const RunDistances& d = s.against_reference;
+    const std::string value = s.setting.role == "reference" || s.setting.role == "scene" ? "" : short_number(s.setting.value);
+    for (const SettingTiming& t : s.timing)
+      std::printf("%-16s %8s %-10s %-5s %10s %16s %14s %18s  %s\n", s.setting.knob.c_str(), value.c_str(),
+                  s.setting.role.c_str(), to_string(t.backend), short_number(t.ms_p50).c_str(),
+                  plus_minus(film ? d.film_l1_mm : d.stain_l1).c_str(), plus_minus(d.frame_psnr_db).c_str(),
+                  plus_minus(s.distance[primary].rms).c_str(), s.status.c_str());
   }
+  const RunDistances& f = result.noise_floor;
+  std::printf("%-16s %8s %-10s %-5s %10s %16s %14s %18s  %s\n", "reference", "", "noise", "", "",
+              plus_minus(film ? f.film_l1_mm : f.stain_l1).c_str(), plus_minus(f.frame_psnr_db).c_str(),
+              plus_minus(result.seed_spread[primary]).c_str(), "two seeds' runs; one run's seed spread");
+  for (std::size_t l = 0; l < result.ladders.size(); ++l) {
+    const LadderResult& ladder = result.ladders[l];
+    std::string levels;
+    for (const double v : ladder.values) levels += (levels.empty() ? "" : ", ") + short_number(v);
+    std::printf("ladder %s (%s): %s: %s\n", ladder.knob.c_str(), levels.c_str(), metrics()[primary].name,
+                ladder.per_metric[primary].fit.statement.c_str());
+  }
+  std::printf("reference (%s): %s\n", study.reference_description().c_str(), result.check.verdict.c_str());
 }
 
 }  // namespace
@@ -102,36 +119,40 @@ int study_command(const StudyOptions& options) {
   const Scenario scenario = load_scenario(options.scenario);
   const Scene& scene = scenario.scene;
   StudySpec spec;
-  for (const std::string& text : options.knobs) spec.sweeps.push_back(parse_knob(text));
+  for (const std::string& text : options.knobs) spec.knobs.push_back(parse_knob(text));
   spec.backends = backends_for(options.backend);
-  if (options.duration_s) spec.duration_s = *options.duration_s;
-  Study study(scene, spec);
+  spec.duration_s = options.duration_s;
+  spec.seeds = options.seeds;
+  spec.cpu_threads = options.threads;
+  const Study study(scene, spec);
 
   const fs::path dir = options.out_dir ? fs::path(*options.out_dir) : fs::path("out/study") / scene.name;
   OutputFolder folder(dir, {}, "--out");
-  const long runs_to_do = long(study.settings().size() * spec.backends.size()) + 1;
   if (!options.quiet)
-    std::printf("bleedsim study: %s: %zu settings on %zu backend(s), %ld frames each; reference: %s; compared on "
-                "%d x %d cells\n",
-                scene.name.c_str(), study.settings().size(), spec.backends.size(), study.frames_per_run(),
-                study.reference_description().c_str(), study.grid_width(), study.grid_height());
+    std::printf("bleedsim study: %s: %zu settings x %d seeds on %zu backend(s), %zu runs of %d frames; reference: %s; "
+                "compared on %d x %d cells at %zu snapshot frames\n",
+                scene.name.c_str(), study.settings().size(), study.seeds(), study.backends().size(), study.job_count(),
+                study.frames_per_run(), study.reference_description().c_str(), study.grid_width(), study.grid_height(),
+                study.snapshot_frames().size());
   std::fflush(stdout);
-  Progress progress(runs_to_do * study.frames_per_run(), !options.quiet && isatty(STDERR_FILENO));
-  const std::vector<StudyRun> runs = study.run([&](long frames) { progress.update(frames); });
+  Progress progress(long(study.job_count()) * study.frames_per_run(), !options.quiet && isatty(STDERR_FILENO));
+  long frames = 0;
+  const std::vector<std::vector<std::uint8_t>> records = run_all_jobs(study, [&] { progress.update(++frames); });
   progress.clear();
+  const StudyResult result = analyse(study, records);
 
-  const fs::path csv = folder.path() / "study.csv", h5 = folder.path() / "study.h5";
-  write_study_csv(csv.string(), scene.name, runs);
-  write_study_hdf5(h5.string(), study, runs,
-                   {{"bleedsim_version", version()}, {"git_sha", git_sha()}, {"build_flags", build_flags()},
-                    {"scene_name", scene.name}, {"scenario_path", scenario.path}, {"scenario_text", scenario.text}});
+  write_study_files(folder.path().string(), study, result,
+                    {{"bleedsim_version", version()}, {"git_sha", git_sha()}, {"build_flags", build_flags()},
+                     {"scene_name", scene.name}, {"scenario_path", scenario.path}, {"scenario_text", scenario.text}});
   folder.keep();
-  if (!options.quiet) print_table(runs);
-  std::printf("bleedsim study: wrote %s and %s\n", csv.string().c_str(), h5.string().c_str());
+  if (!options.quiet) print_results(study, result);
+  std::printf("bleedsim study: wrote %s, %s and %s\n", (folder.path() / "study.csv").string().c_str(),
+              (folder.path() / "ladders.csv").string().c_str(), (folder.path() / "study.h5").string().c_str());
   if (options.plots) {
     if (std::system(plot_command(folder.path()).c_str()) != 0)
-      std::fprintf(stderr, "bleedsim study: plots not drawn (they need Debian's python3-matplotlib); draw them "
-                           "where it is installed with: scripts/plot-study %s\n", folder.path().string().c_str());
+      std::fprintf(stderr, "bleedsim study: plots not drawn (they need Debian's python3-matplotlib and python3-h5py); "
+                           "draw them where they are installed with: scripts/plot-study %s\n",
+                   folder.path().string().c_str());
   }
   return 0;
 }

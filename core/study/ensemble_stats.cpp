@@ -151,7 +151,7 @@ Estimate seed_spread(const SeedValues& x) {
   std::vector<double> without;
   over_components(
       n, components, [&](std::size_t s, std::size_t c) { return x[s][c]; },
-      [](double, double m2, std::size_t seeds) { return m2 / double(seeds - 1); }, full, without);
+      [](double, double m2, std::size_t seeds) { return 2 * m2 / double(seeds - 1); }, full, without);
   return jackknife_ci(n, std::sqrt(full), [&](std::size_t i) { return std::sqrt(without[i]); });
 }
 

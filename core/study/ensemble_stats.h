@@ -52,8 +52,9 @@ struct Distance {
 };
 Distance ensemble_distance(const SeedValues& x, const SeedValues& y);
 
-// One run's seed-to-seed spread: the RMS over the components of each component's standard
-// deviation over the seeds (√ of the mean of the unbiased variances), with its jackknife interval.
+// The seed-to-seed spread: the RMS distance between two runs that differ only in their seed,
+// √(2 · mean over the components of the unbiased variance over the seeds) (E[(xᵢ − xⱼ)²] = 2σ²),
+// with its jackknife interval.
 Estimate seed_spread(const SeedValues& x);
 
 // The mean over pairs of seeds i < j of f(i, j) (a distance between two runs of the same setting

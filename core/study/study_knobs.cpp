@@ -1,14 +1,18 @@
-// The accuracy knobs of the study (core/study/study.h, docs/accuracy.md). Each knob is applied once, in
-// this table's order, to a copy of the scene: those that scale (particle size, resolution, the blur's
-// downsampling) scale what the knobs before them set.
+// The accuracy knobs of the study (core/study/study_knobs.h, docs/accuracy.md). Each is applied once,
+// in this table's order, to a copy of the scene: those that scale (particle size, resolution, the
+// blur's downsampling) scale what the knobs before them set.
+#include "core/study/study_knobs.h"
+
 #include <algorithm>
 #include <cmath>
 
-#include "core/study/study.h"
 #include "core/effects/particle_model.h"
 #include "core/io/scenario.h"
 #include "core/io/tissue_png.h"
+#include "core/runtime/message_text.h"
 #include "core/runtime/tissue.h"
+#include "core/study/ensemble_stats.h"
+#include "core/study/study_metrics.h"
 
 namespace bleedsim {
 namespace {
@@ -26,15 +30,27 @@ std::vector<double> whole_multiples(double base, std::initializer_list<double> f
   return values;
 }
 
-// The scene's sub-steps: its own, or the fewest its contact allows (substeps = 0).
+// The sub-steps the scene runs with: its own, or the fewest its contact allows.
 double resolved_substeps(const Scene& s) {
   return double(particle_mechanics(*s.particles, s.domain, s.frame_rate_hz).substeps);
 }
 
+void set_compression(Scene& s, double e) {
+  pin_particle_model(s);
+  s.particles->compression = e;
+}
+
+void set_substeps(Scene& s, double n) {
+  pin_particle_model(s);
+  s.particles->substeps = int(n);
+}
+
 // Particles f times the diameter carry f² the blood each, f⁻² as many for the same flow of blood:
-// the film, the pile's area and the blood's volume stay; only how finely it is sampled changes
-// (the contact's stiffness and the sub-steps follow, as the model derives them).
+// the film, the pile's area and the blood's volume stay; only how finely it is sampled changes. The
+// compression stays, so the stiffness per unit mass follows as 1/d² (what the same compression
+// means at another size), and the time step stays: a size whose contact it cannot hold is refused.
 void set_particle_size(Scene& s, double f) {
+  pin_particle_model(s);
   ParticleParams& p = *s.particles;
   p.diameter_mm *= f;
   if (p.cell_mm > 0) p.cell_mm *= f;
@@ -50,13 +66,24 @@ void scale_blur_pixels(Scene& s, double factor) {
   s.blur->sigma_px *= factor;
 }
 
+// The panel's pixels; the tissue and the vessel map are the scene's, drawn or read again at the new
+// size (the procedural ones from the scene's own seed, which a study's ensemble leaves alone).
 void set_resolution(Scene& s, double f) {
-  s.domain.width_px = std::max(1, int(std::round(s.domain.width_px * f)));
-  s.domain.height_px = std::max(1, int(std::round(s.domain.height_px * f)));
+  const int old_w = s.domain.width_px, old_h = s.domain.height_px;
+  s.domain.width_px = resolution_pixels(old_w, f);
+  s.domain.height_px = resolution_pixels(old_h, f);
+  const int w = s.domain.width_px, h = s.domain.height_px;
   scale_blur_pixels(s, f);
-  s.tissue = s.tissue_source == "procedural"
-                 ? procedural_tissue(s.domain.width_px, s.domain.height_px, s.seed)
-                 : load_tissue_png(s.tissue_source, s.domain.width_px, s.domain.height_px, {}, "tissue.texture");
+  s.tissue = s.tissue_source == "procedural" ? procedural_tissue(w, h, s.seed)
+                                             : load_tissue_png(s.tissue_source, w, h, {}, "tissue.texture");
+  if (!s.vessels) return;
+  if (s.vessels->map == "procedural") {
+    s.vessel_density = procedural_vessel_density(w, h, s.seed);
+  } else {
+    const std::vector<double> resampled =
+        area_resample(std::vector<double>(s.vessel_density.begin(), s.vessel_density.end()), old_w, old_h, w, h);
+    s.vessel_density.assign(resampled.begin(), resampled.end());
+  }
 }
 
 void set_blur_downsample(Scene& s, double d) {
@@ -66,43 +93,66 @@ void set_blur_downsample(Scene& s, double d) {
 
 }  // namespace
 
+int resolution_pixels(int pixels, double factor) { return std::max(1, int(std::round(pixels * factor))); }
+
+int fewest_stable_substeps(const Scene& scene) {
+  ParticleParams p = *scene.particles;
+  p.substeps = 0;
+  return particle_mechanics(p, scene.domain, scene.frame_rate_hz).substeps;
+}
+
+void pin_particle_model(Scene& s) {
+  if (!s.particles) return;
+  const ParticleMechanics m = particle_mechanics(*s.particles, s.domain, s.frame_rate_hz);
+  s.particles->substeps = m.substeps;
+  s.particles->design_depth_mm = m.depth_mm;
+}
+
 const std::vector<Knob>& knobs() {
   static const std::vector<Knob> table = {
       {"compression",
        "the deepest pile's overlap as a fraction of the diameter, which sets the contact's stiffness: "
-       "more lets blood compress, and needs fewer sub-steps",
-       false, "particles.compression", has_particles, [](const Scene& s) { return s.particles->compression; },
+       "more lets blood compress",
+       "the time step, the particles and the pile the contact is made for (a contact too stiff for the "
+       "time step is refused)",
+       false, false, kNaN, "particles.compression", has_particles,
+       [](const Scene& s) { return s.particles->compression; },
        [](const Scene& s) {
          const double e = s.particles->compression;
-         return std::vector<double>{e / 2, e, 2 * e, 4 * e};
+         return std::vector<double>{4 * e, 2 * e, e};
        },
-       [](Scene& s, double e) { s.particles->compression = e; }},
+       set_compression},
       {"substeps",
-       "physics steps per frame (the time step), from the fewest the contact allows up: more cost more "
-       "and refine the time step alone",
-       true, "particles.substeps", has_particles, resolved_substeps,
-       [](const Scene& s) { return whole_multiples(resolved_substeps(s), {1, 2, 4}); },
-       [](Scene& s, double v) { s.particles->substeps = int(v); }},
+       "physics steps per frame (the time step): more cost more and refine the time step",
+       "the contact, the particles and everything else",
+       true, true, kNaN, "particles.substeps", has_particles, resolved_substeps,
+       [](const Scene& s) { return whole_multiples(resolved_substeps(s), {1, 2}); }, set_substeps},
       {"particle_size",
-       "the particles' diameter, as a factor (the blood's volume kept): larger particles are fewer "
-       "and cheaper, but sample the flow and the film more coarsely",
-       false, nullptr, has_particles, [](const Scene&) { return 1.0; },
-       [](const Scene&) { return std::vector<double>{0.7, 1.0, 1.4, 2.0}; }, set_particle_size},
+       "the particles' diameter, as a factor: larger particles are fewer and cheaper, and sample the "
+       "flow and the film more coarsely",
+       "the blood (its volume, flow and film), the compression, the surface tension and grip per unit "
+       "length, the time step (a size whose contact it cannot hold is refused)",
+       false, false, kNaN, nullptr, has_particles, [](const Scene&) { return 1.0; },
+       [](const Scene&) { return std::vector<double>{4.0, 2.0, 1.0}; }, set_particle_size},
       {"blur_radius",
-       "the blur's taps either side (its Gaussian's width kept): fewer cost less, and cut the "
-       "Gaussian's tails off",
-       true, "blur.radius_px", has_blur, [](const Scene& s) { return double(s.blur->radius_px); },
-       [](const Scene& s) { return whole_multiples(s.blur->radius_px, {0.25, 0.5, 1, 2}); },
+       "the blur's taps either side: fewer cost less, and cut the Gaussian's tails off",
+       "the Gaussian's width and the downsampling",
+       true, true, kNaN, "blur.radius_px", has_blur, [](const Scene& s) { return double(s.blur->radius_px); },
+       [](const Scene& s) { return whole_multiples(s.blur->radius_px, {0.25, 0.5, 1}); },
        [](Scene& s, double r) { s.blur->radius_px = int(r); }},
       {"blur_downsample",
-       "the blur's downsampling (1, 2 or 4; its width on the panel kept): more is cheaper, and "
-       "coarsens the film's edges",
-       false, "blur.downsample", has_blur, [](const Scene& s) { return double(s.blur->downsample); },
-       [](const Scene&) { return scenario_param("blur.downsample").range.only; }, set_blur_downsample},
+       "the blur's downsampling (1, 2 or 4): more is cheaper, and coarsens the film's edges (1: none, "
+       "nothing to refine)",
+       "the blur's width on the panel and where its taps cut the Gaussian (taps and width in "
+       "downsampled pixels scale with it)",
+       false, true, 1.0, "blur.downsample", has_blur, [](const Scene& s) { return double(s.blur->downsample); },
+       [](const Scene&) { return std::vector<double>{4, 2, 1}; }, set_blur_downsample},
       {"resolution",
-       "the panel's pixels, as a factor on width and height (the spread texture, the film, the "
-       "frame): fewer are cheaper and blur every edge",
-       true, nullptr, always, [](const Scene&) { return 1.0; },
+       "the panel's pixels, as a factor on width and height (the spread texture, the film, the frame): "
+       "fewer are cheaper and blur every edge",
+       "the panel in mm, the particles, the blur's width on the panel, the tissue and vessels (drawn "
+       "again at the new size)",
+       true, false, kNaN, nullptr, always, [](const Scene&) { return 1.0; },
        [](const Scene&) { return std::vector<double>{0.25, 0.5, 1.0}; }, set_resolution},
   };
   return table;
@@ -112,6 +162,34 @@ const Knob* find_knob(const std::string& name) {
   for (const Knob& knob : knobs())
     if (name == knob.name) return &knob;
   return nullptr;
+}
+
+std::string unknown_knob_message(const std::string& name) {
+  std::string known;
+  for (const Knob& k : knobs()) known += std::string(known.empty() ? "" : ", ") + k.name;
+  const std::string why = name.find("iteration") != std::string::npos
+                              ? ": the particle model has no solver iterations (each sub-step is one neighbour "
+                                "pass, docs/particles.md); its time step is the substeps knob"
+                              : "";
+  return "no knob '" + name + "'" + why + " (known: " + known + ")";
+}
+
+double knob_step(const Knob& knob, double value) { return knob.finer_is_larger ? 1.0 / value : value; }
+
+std::optional<double> refined_value(const Knob& knob, const std::vector<double>& levels) {
+  const double finest = levels.back();
+  const double ratio = levels.size() >= 2 ? finest / levels[levels.size() - 2] : (knob.finer_is_larger ? 2.0 : 0.5);
+  double value = finest * ratio;
+  if (knob.whole) {
+    value = std::round(value);
+    if (value == finest) value += knob.finer_is_larger ? 1 : -1;
+  }
+  if (!(value > 0) || !std::isfinite(value)) return std::nullopt;
+  if (knob.param) {
+    const ParamView& param = scenario_param(knob.param);
+    if (range_problem(knob.param, param.type, param.range, value)) return std::nullopt;
+  }
+  return value;
 }
 
 }  // namespace bleedsim

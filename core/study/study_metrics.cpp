@@ -58,7 +58,7 @@ std::vector<To> converted(const std::vector<From>& v) {
 }
 
 template <class T>
-double mean_abs_difference(const std::vector<T>& a, const std::vector<T>& b, int power) {
+double mean_difference(const std::vector<T>& a, const std::vector<T>& b, int power) {
   if (a.empty() || b.empty()) return kNotApplicable;
   double sum = 0;
   for (std::size_t i = 0; i < a.size(); ++i) {
@@ -66,12 +66,6 @@ double mean_abs_difference(const std::vector<T>& a, const std::vector<T>& b, int
     sum += power == 1 ? d : d * d;
   }
   return sum / double(a.size());
-}
-
-double relative_error(double value, double reference) {
-  if (std::isnan(value) || std::isnan(reference)) return kNotApplicable;
-  if (reference == 0) return value == 0 ? 0.0 : std::numeric_limits<double>::infinity();
-  return std::abs(value - reference) / reference;
 }
 
 }  // namespace
@@ -101,21 +95,29 @@ std::vector<double> pile_heights_mm(const std::vector<float>& film_mm, int w, in
   return heights;
 }
 
+double blood_front_mm(const std::vector<float>& film_mm, int w, int h, double width_mm, double height_mm,
+                      double gravity_x, double gravity_y) {
+  const double g = std::hypot(gravity_x, gravity_y);
+  const double ux = g > 0 ? gravity_x / g : 0.0, uy = g > 0 ? gravity_y / g : 1.0;
+  // The most uphill corner: where x·u is least.
+  const double origin = std::min(0.0, ux * width_mm) + std::min(0.0, uy * height_mm);
+  const double cell_w = width_mm / w, cell_h = height_mm / h;
+  double front = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x)
+      if (film_mm[std::size_t(y) * std::size_t(w) + std::size_t(x)] > kCoveredFilmMm)
+        front = std::max(front, ux * (x + 0.5) * cell_w + uy * (y + 0.5) * cell_h - origin);
+  return front;
+}
+
+std::vector<float> film_on_grid(const FrameFields& f, int grid_w, int grid_h) {
+  if (f.film_mm.empty()) return {};
+  return converted<float>(area_resample(converted<double>(f.film_mm), f.width, f.height, grid_w, grid_h));
+}
+
 GridFrame on_grid(const FrameFields& f, int grid_w, int grid_h) {
   GridFrame g;
-  const double pixel_area_mm2 = (f.width_mm / f.width) * (f.height_mm / f.height);
-  if (!f.film_mm.empty()) {
-    g.film_mm = converted<float>(area_resample(converted<double>(f.film_mm), f.width, f.height, grid_w, grid_h));
-    g.pile_height_mm = pile_heights_mm(g.film_mm, grid_w, grid_h, f.height_mm / grid_h);
-    g.covered_area_mm2 = 0;
-    g.volume_mm3 = 0;
-    for (const float t : f.film_mm) {
-      g.volume_mm3 += double(t) * pixel_area_mm2;
-      if (t > kCoveredFilmMm) g.covered_area_mm2 += pixel_area_mm2;
-    }
-  } else {
-    g.covered_area_mm2 = g.volume_mm3 = kNotApplicable;
-  }
+  g.film_mm = film_on_grid(f, grid_w, grid_h);
   if (!f.stain.empty())
     g.stain = converted<float>(area_resample(converted<double>(f.stain), f.width, f.height, grid_w, grid_h));
   std::vector<double> rgb(std::size_t(f.width) * std::size_t(f.height) * 3);
@@ -125,17 +127,31 @@ GridFrame on_grid(const FrameFields& f, int grid_w, int grid_h) {
   return g;
 }
 
-FrameErrors compare(const GridFrame& run, const GridFrame& reference) {
-  FrameErrors e;
-  e.film_l1_mm = mean_abs_difference(run.film_mm, reference.film_mm, 1);
-  const double film_mse = mean_abs_difference(run.film_mm, reference.film_mm, 2);
-  e.film_l2_mm = std::sqrt(film_mse);
-  e.frame_mse = mean_abs_difference(run.rgb, reference.rgb, 2);
-  e.stain_l1 = mean_abs_difference(run.stain, reference.stain, 1);
-  e.covered_area_rel_error = relative_error(run.covered_area_mm2, reference.covered_area_mm2);
-  e.volume_rel_error = relative_error(run.volume_mm3, reference.volume_mm3);
-  e.pile_height_error_mm = mean_abs_difference(run.pile_height_mm, reference.pile_height_mm, 1);
-  return e;
+FrameMeasures measure_frame(const FrameFields& f, const std::vector<float>& film_grid, int grid_w, int grid_h,
+                            double gravity_x, double gravity_y) {
+  if (f.film_mm.empty()) return {kNotApplicable, kNotApplicable, kNotApplicable, kNotApplicable};
+  FrameMeasures m{};
+  const double pixel_area_mm2 = (f.width_mm / f.width) * (f.height_mm / f.height);
+  m.covered_area_mm2 = 0;
+  m.volume_mm3 = 0;
+  for (const float t : f.film_mm) {
+    m.volume_mm3 += double(t) * pixel_area_mm2;
+    if (t > kCoveredFilmMm) m.covered_area_mm2 += pixel_area_mm2;
+  }
+  m.front_mm = blood_front_mm(film_grid, grid_w, grid_h, f.width_mm, f.height_mm, gravity_x, gravity_y);
+  double pile = 0;
+  for (const double height : pile_heights_mm(film_grid, grid_w, grid_h, f.height_mm / grid_h)) pile += height;
+  m.pile_height_mm = pile / grid_w;
+  return m;
+}
+
+RunDistance run_distance(const GridFrame& run, const GridFrame& other) {
+  RunDistance d;
+  d.film_l1_mm = mean_difference(run.film_mm, other.film_mm, 1);
+  d.film_l2_mm = std::sqrt(mean_difference(run.film_mm, other.film_mm, 2));
+  d.frame_mse = mean_difference(run.rgb, other.rgb, 2);
+  d.stain_l1 = mean_difference(run.stain, other.stain, 1);
+  return d;
 }
 
 double psnr_db(double mse) {

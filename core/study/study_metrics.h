@@ -1,8 +1,9 @@
 #pragma once
-// The accuracy study's error metrics (docs/accuracy.md): one frame of a run against the same frame
-// of the reference run. Settings that change the panel's resolution are compared on a common grid
-// of cells over the same panel, each cell the area mean of the pixels under it, so every setting is
-// judged on the same cells.
+// What the accuracy study measures of one run (docs/accuracy.md, "The metrics"): every frame, the
+// blood front, the covered area, the volume in view and the pile's height; at the snapshot frames,
+// the film, the stain and the colour on a common grid of cells over the panel (each cell the area
+// mean of the pixels under it), so that settings of different resolutions are compared on the
+// same cells.
 #include <cstdint>
 #include <vector>
 
@@ -21,41 +22,51 @@ struct FrameFields {
   std::vector<std::uint8_t> rgba;       // the frame
 };
 
-// A frame on the common grid, with the measures taken at its own resolution: what a run keeps of
-// the reference (in float, to keep a long reference in memory), and what each frame is compared as.
-struct GridFrame {
-  std::vector<float> film_mm, stain, rgb;   // rgb: three values per cell
-  std::vector<double> pile_height_mm;       // per column of the grid
-  double covered_area_mm2 = 0;              // the panel's area under film thicker than kCoveredFilmMm
-  double volume_mm3 = 0;                    // the film's volume: thickness summed over the panel
-};
-
-// How far a frame is from the reference's: NaN where the scene lacks the field.
-struct FrameErrors {
-  double film_l1_mm, film_l2_mm;    // mean and root-mean-square |Δ thickness| over the grid's cells
-  double frame_mse;                 // mean squared difference of R, G, B (0–255)
-  double stain_l1;                  // mean |Δ stain|
-  double covered_area_rel_error;    // |A − A_ref| / A_ref
-  double volume_rel_error;          // |V − V_ref| / V_ref
-  double pile_height_error_mm;      // mean over columns of |h − h_ref|
-};
+// The common grid for panels of these sizes: the coarsest, and no finer than kMaxGridWidth cells
+// across (its aspect kept), so that a run's snapshots stay within a few MB.
+constexpr int kMaxGridWidth = 160;
+void common_grid(int& grid_w, int& grid_h);
 
 // Each output cell of out_w × out_h over the same extent is the mean of the input over its area
 // (pixels that straddle a cell edge count by the part inside). Separable: rows, then columns.
 std::vector<double> area_resample(const std::vector<double>& in, int in_w, int in_h, int out_w, int out_h,
                                   int channels = 1);
 
-// The common grid for panels of these sizes: the coarsest, and no finer than kMaxGridWidth cells
-// across (its aspect kept), so that a reference's frames fit in memory.
-constexpr int kMaxGridWidth = 320;
-void common_grid(int& grid_w, int& grid_h);
+// A frame's fields on the common grid: the film and the stain (empty where the scene lacks them)
+// and the colour (R, G, B per cell, 0–255).
+struct GridFrame {
+  std::vector<float> film_mm, stain, rgb;
+};
+GridFrame on_grid(const FrameFields& frame, int grid_w, int grid_h);
+std::vector<float> film_on_grid(const FrameFields& frame, int grid_w, int grid_h);
 
 // The height of blood standing at the bottom of each column: from the bottom row up, the cells
 // whose film is thicker than kCoveredFilmMm without a gap, times the cell height.
 std::vector<double> pile_heights_mm(const std::vector<float>& film_mm, int w, int h, double cell_height_mm);
 
-GridFrame on_grid(const FrameFields& frame, int grid_w, int grid_h);
-FrameErrors compare(const GridFrame& run, const GridFrame& reference);
+// How far the blood has run along gravity: the farthest covered cell's centre, measured along the
+// gravity's direction in the panel from the panel's most uphill corner (straight down: the lowest
+// covered cell's y, mm from the top); 0 while nothing is covered.
+double blood_front_mm(const std::vector<float>& film_mm, int w, int h, double width_mm, double height_mm,
+                      double gravity_x, double gravity_y);
+
+// Every frame's measures of a run with a film (the particles'); NaN without one.
+struct FrameMeasures {
+  double front_mm;          // blood_front_mm on the grid
+  double covered_area_mm2;  // the panel's area under film thicker than kCoveredFilmMm, at its own pixels
+  double volume_mm3;        // the film's volume in view: thickness summed over the panel's pixels
+  double pile_height_mm;    // the mean over the grid's columns of pile_heights_mm
+};
+FrameMeasures measure_frame(const FrameFields& frame, const std::vector<float>& film_grid, int grid_w, int grid_h,
+                            double gravity_x, double gravity_y);
+
+// One run's distance from another's at the same frames: mean and root-mean-square |Δ thickness|
+// over the cells, the colour's mean squared difference (8-bit levels) and the stain's mean |Δ|;
+// NaN where the scene lacks the field.
+struct RunDistance {
+  double film_l1_mm, film_l2_mm, frame_mse, stain_l1;
+};
+RunDistance run_distance(const GridFrame& run, const GridFrame& other);
 
 // PSNR of 8-bit colour from a mean squared error, dB; infinite for identical frames.
 double psnr_db(double mse);

@@ -10,24 +10,9 @@
 #include <stdexcept>
 
 #include "core/runtime/message_text.h"
-#include "core/runtime/timing_summary.h"
 
 namespace bleedsim {
 namespace {
-
-// The per-frame errors by name, as the CSV columns and the HDF5 datasets call them.
-struct ErrorColumn {
-  const char* name;
-  double FrameErrors::*member;
-  const char* unit;
-};
-const ErrorColumn kErrorColumns[] = {{"film_l1_mm", &FrameErrors::film_l1_mm, "mm"},
-                                     {"film_l2_mm", &FrameErrors::film_l2_mm, "mm"},
-                                     {"frame_mse", &FrameErrors::frame_mse, "(8-bit levels)^2"},
-                                     {"covered_area_rel_error", &FrameErrors::covered_area_rel_error, "1"},
-                                     {"volume_rel_error", &FrameErrors::volume_rel_error, "1"},
-                                     {"pile_height_error_mm", &FrameErrors::pile_height_error_mm, "mm"},
-                                     {"stain_l1", &FrameErrors::stain_l1, "1"}};
 
 std::string cell(double v) {
   if (std::isnan(v)) return "";
@@ -35,7 +20,7 @@ std::string cell(double v) {
   return format_significant(v, 6);
 }
 
-// A CSV field: quoted when it holds a comma or a quote.
+// A CSV field: quoted when it holds a comma, a quote or a line break.
 std::string field(const std::string& text) {
   if (text.find_first_of(",\"\n") == std::string::npos) return text;
   std::string quoted = "\"";
@@ -43,136 +28,277 @@ std::string field(const std::string& text) {
   return quoted + "\"";
 }
 
+std::string cells(const Estimate& e) { return cell(e.value) + ',' + cell(e.lo) + ',' + cell(e.hi); }
+
+std::string with_bounds(const std::string& name) { return name + ',' + name + "_lo," + name + "_hi"; }
+
 void rename_into_place(const std::string& partial, const std::string& path) {
   std::error_code error;
   std::filesystem::rename(partial, path, error);
   if (error) throw std::runtime_error("cannot rename '" + partial + "' to '" + path + "': " + error.message());
 }
 
-// HDF5 handles closed on every path out, errors as exceptions naming the file.
-struct H5 {
-  std::string file;
-  hid_t check(hid_t id, const std::string& what) const {
-    if (id < 0) throw std::runtime_error("cannot " + what + " in HDF5 file '" + file + "'");
-    return id;
-  }
-};
-
-void text_attribute(const H5& h5, hid_t object, const std::string& name, const std::string& value) {
-  const hid_t type = h5.check(H5Tcopy(H5T_C_S1), "copy the string type");
-  H5Tset_size(type, H5T_VARIABLE);
-  H5Tset_cset(type, H5T_CSET_UTF8);
-  const hid_t space = h5.check(H5Screate(H5S_SCALAR), "create a dataspace");
-  const hid_t attribute = h5.check(H5Acreate2(object, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT),
-                                   "create attribute " + name);
-  const char* text = value.c_str();
-  const herr_t written = H5Awrite(attribute, type, &text);
-  H5Aclose(attribute);
-  H5Sclose(space);
-  H5Tclose(type);
-  h5.check(written, "write attribute " + name);
-}
-
-void number_dataset(const H5& h5, hid_t group, const std::string& name, const std::vector<double>& values,
-                    const std::string& unit) {
-  const hsize_t n = values.size();
-  const hid_t space = h5.check(H5Screate_simple(1, &n, nullptr), "create a dataspace");
-  const hid_t set = h5.check(H5Dcreate2(group, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                             "create dataset " + name);
-  const herr_t written = H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data());
-  text_attribute(h5, set, "unit", unit);
-  H5Dclose(set);
-  H5Sclose(space);
-  h5.check(written, "write dataset " + name);
-}
-
-FrameErrors mean_over_frames(const std::vector<FrameErrors>& errors) {
-  FrameErrors mean;
-  for (const ErrorColumn& column : kErrorColumns) {
-    double sum = 0;
-    for (const FrameErrors& e : errors) sum += e.*column.member;
-    mean.*column.member = errors.empty() ? std::nan("") : sum / double(errors.size());
-  }
-  return mean;
-}
-
-}  // namespace
-
-StudySummary summarize(const StudyRun& run) {
-  StudySummary s;
-  s.frames = long(run.frame_seconds.size());
-  const Percentiles p = percentiles_of(run.frame_seconds);
-  s.ms_p50 = 1e3 * p.p50;
-  s.ms_p99 = 1e3 * p.p99;
-  s.frame_budget_p99_pct = 100.0 * p.p99 / kFrameBudget_s;
-  s.mean = mean_over_frames(run.errors);
-  s.psnr_db = psnr_db(s.mean.frame_mse);
-  s.knob_mean = mean_over_frames(run.knob_errors);
-  s.knob_psnr_db = psnr_db(s.knob_mean.frame_mse);
-  return s;
-}
-
-void write_study_csv(const std::string& path, const std::string& scene_name, const std::vector<StudyRun>& runs) {
+// Writes `path` through `write` into a temporary file, renamed into place once it is whole.
+void write_text_file(const std::string& path, const std::function<void(std::ostream&)>& write) {
   const std::string partial = path + ".partial";
   {
     std::ofstream out(partial);
     if (!out) throw std::runtime_error("cannot write '" + partial + "'");
-    out << "scene,knob,value,role,backend,status,frames,ms_per_frame_p50,ms_per_frame_p99,frame_budget_p99_pct,"
-           "film_l1_mm,film_l2_mm,frame_psnr_db,covered_area_rel_error,volume_rel_error,pile_height_error_mm,stain_l1,"
-           "knob_film_l1_mm,knob_frame_psnr_db,knob_stain_l1\n";
-    for (const StudyRun& run : runs) {
-      const StudySetting& st = run.setting;
-      out << field(scene_name) << ',' << st.knob << ',' << cell(st.value) << ',' << st.role << ','
-          << to_string(run.backend) << ',' << field(run.status);
-      if (run.status == "ok") {
-        const StudySummary s = summarize(run);
-        out << ',' << s.frames << ',' << cell(s.ms_p50) << ',' << cell(s.ms_p99) << ',' << cell(s.frame_budget_p99_pct)
-            << ',' << cell(s.mean.film_l1_mm) << ',' << cell(s.mean.film_l2_mm) << ',' << cell(s.psnr_db) << ','
-            << cell(s.mean.covered_area_rel_error) << ',' << cell(s.mean.volume_rel_error) << ','
-            << cell(s.mean.pile_height_error_mm) << ',' << cell(s.mean.stain_l1) << ',' << cell(s.knob_mean.film_l1_mm)
-            << ',' << cell(run.knob_errors.empty() ? std::nan("") : s.knob_psnr_db) << ',' << cell(s.knob_mean.stain_l1);
-      } else {
-        out << ",,,,,,,,,,,,,,";
-      }
-      out << '\n';
-    }
+    write(out);
     if (!out.flush()) throw std::runtime_error("cannot write '" + partial + "'");
   }
   rename_into_place(partial, path);
 }
 
-void write_study_hdf5(const std::string& path, const Study& study, const std::vector<StudyRun>& runs,
+const char* kRunColumns[] = {"film_l1_mm", "film_l2_mm", "frame_psnr_db", "stain_l1"};
+
+std::string run_cells(const RunDistances& d) {
+  return cells(d.film_l1_mm) + ',' + cells(d.film_l2_mm) + ',' + cells(d.frame_psnr_db) + ',' + cells(d.stain_l1);
+}
+
+std::string describe_value(const StudySetting& s) {
+  return s.role == "reference" || s.role == "scene" || s.role == "noise_floor" ? "" : cell(s.value);
+}
+
+// ---- HDF5 -------------------------------------------------------------------------------------
+
+// HDF5 handles closed on every path out, errors as exceptions naming the file; objects carry no
+// creation times, so the same data give the same bytes.
+class H5 {
+ public:
+  explicit H5(std::string file) : file_(std::move(file)) {
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+    dataset_create_ = check(H5Pcreate(H5P_DATASET_CREATE), "create a property list");
+    group_create_ = check(H5Pcreate(H5P_GROUP_CREATE), "create a property list");
+    H5Pset_obj_track_times(dataset_create_, 0);
+    H5Pset_obj_track_times(group_create_, 0);
+  }
+  ~H5() {
+    H5Pclose(dataset_create_);
+    H5Pclose(group_create_);
+  }
+  H5(const H5&) = delete;
+  H5& operator=(const H5&) = delete;
+
+  hid_t check(hid_t id, const std::string& what) const {
+    if (id < 0) throw std::runtime_error("cannot " + what + " in HDF5 file '" + file_ + "'");
+    return id;
+  }
+  hid_t group(hid_t parent, const std::string& name) const {
+    return check(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, group_create_, H5P_DEFAULT), "create group " + name);
+  }
+  void text(hid_t object, const std::string& name, const std::string& value) const {
+    const hid_t type = check(H5Tcopy(H5T_C_S1), "copy the string type");
+    H5Tset_size(type, H5T_VARIABLE);
+    H5Tset_cset(type, H5T_CSET_UTF8);
+    const hid_t space = check(H5Screate(H5S_SCALAR), "create a dataspace");
+    const hid_t attribute =
+        check(H5Acreate2(object, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT), "create attribute " + name);
+    const char* chars = value.c_str();
+    const herr_t written = H5Awrite(attribute, type, &chars);
+    H5Aclose(attribute);
+    H5Sclose(space);
+    H5Tclose(type);
+    check(written, "write attribute " + name);
+  }
+  // A dataset of doubles, rows × columns (columns 0: one dimension).
+  void numbers(hid_t group, const std::string& name, const std::vector<double>& values, std::size_t columns = 0,
+               const std::string& unit = "") const {
+    const hsize_t dims[2] = {columns ? values.size() / columns : values.size(), columns};
+    const hid_t space = check(H5Screate_simple(columns ? 2 : 1, dims, nullptr), "create a dataspace");
+    const hid_t set = check(H5Dcreate2(group, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, dataset_create_, H5P_DEFAULT),
+                            "create dataset " + name);
+    const herr_t written = values.empty() ? 0 : H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data());
+    if (!unit.empty()) text(set, "unit", unit);
+    H5Dclose(set);
+    H5Sclose(space);
+    check(written, "write dataset " + name);
+  }
+  // Estimates as rows of (value, lo, hi).
+  void estimates(hid_t group, const std::string& name, const std::vector<Estimate>& rows, const std::string& unit = "") const {
+    std::vector<double> values;
+    for (const Estimate& e : rows) values.insert(values.end(), {e.value, e.lo, e.hi});
+    numbers(group, name, values, 3, unit);
+  }
+
+ private:
+  std::string file_;
+  hid_t dataset_create_, group_create_;
+};
+
+std::string numbered(std::size_t i) {
+  char name[32];
+  std::snprintf(name, sizeof name, "%03zu", i);
+  return name;
+}
+
+std::vector<Estimate> rms_of(const std::vector<Distance>& distances) {
+  std::vector<Estimate> out;
+  for (const Distance& d : distances) out.push_back(d.rms);
+  return out;
+}
+
+void write_setting(const H5& h5, hid_t group, const SettingResult& s) {
+  h5.text(group, "knob", s.setting.knob);
+  h5.text(group, "value", describe_value(s.setting));
+  h5.text(group, "role", s.setting.role);
+  h5.text(group, "status", s.status);
+  if (s.status != "ok") return;
+  for (std::size_t m = 0; m < metrics().size(); ++m) {
+    const MetricInfo& info = metrics()[m];
+    if (std::isnan(s.value[m].value)) continue;
+    h5.estimates(group, info.name, {s.value[m]}, info.unit);
+    h5.estimates(group, std::string(info.name) + "_distance", {s.distance[m].rms}, info.unit);
+    if (!s.curves[m].empty()) h5.estimates(group, std::string(info.name) + "_per_frame", s.curves[m], info.unit);
+  }
+  if (!s.pile_profile_mm.empty()) h5.estimates(group, "pile_profile_mm", s.pile_profile_mm, "mm");
+  const RunDistances& d = s.against_reference;
+  h5.estimates(group, "against_reference", {d.film_l1_mm, d.film_l2_mm, d.frame_psnr_db, d.stain_l1});
+  h5.text(group, "against_reference_rows", "film_l1_mm, film_l2_mm, frame_psnr_db, stain_l1");
+}
+
+void write_ladder(const H5& h5, hid_t group, const LadderResult& ladder, const KnobCheck& check) {
+  h5.numbers(group, "values", ladder.values);
+  std::string roles, refused;
+  for (const std::string& r : ladder.roles) roles += (roles.empty() ? "" : ", ") + r;
+  for (const auto& [value, why] : ladder.refused) refused += (refused.empty() ? "" : "; ") + format_number(value) + ": " + why;
+  h5.text(group, "roles", roles);
+  h5.text(group, "refused", refused);
+  h5.text(group, "check", check.status);
+  for (std::size_t m = 0; m < metrics().size(); ++m) {
+    const LadderMetric& lm = ladder.per_metric[m];
+    if (lm.level_values.empty()) continue;
+    const hid_t metric = h5.group(group, metrics()[m].name);
+    h5.estimates(metric, "level_values", lm.level_values, metrics()[m].unit);
+    h5.estimates(metric, "differences", rms_of(lm.fit.differences), metrics()[m].unit);
+    h5.estimates(metric, "orders", lm.fit.orders);
+    h5.text(metric, "statement", lm.fit.statement);
+    h5.numbers(metric, "asymptotic_from", {double(lm.fit.asymptotic_from)});
+    h5.estimates(metric, "extrapolated", {lm.extrapolated}, metrics()[m].unit);
+    h5.estimates(metric, "limit_distance", {lm.limit_distance}, metrics()[m].unit);
+    H5Gclose(metric);
+  }
+}
+
+}  // namespace
+
+void write_study_csv(const std::string& path, const Study& study, const StudyResult& result) {
+  write_text_file(path, [&](std::ostream& out) {
+    out << "scene,knob,value,role,backend,status,seeds";
+    for (const char* column : kRunColumns) out << ',' << with_bounds(column);
+    for (const MetricInfo& info : metrics()) out << ',' << with_bounds(info.name) << ',' << with_bounds(std::string(info.name) + "_dist");
+    out << ",check,time_ms_p50,time_ms_p99,time_ms_p50_lo,time_ms_p50_hi\n";
+    const std::string scene = field(study.scene().name), seeds = std::to_string(study.seeds());
+    for (std::size_t i = 0; i < result.settings.size(); ++i) {
+      const SettingResult& s = result.settings[i];
+      std::string check;
+      if (s.setting.role == "reference") check = result.check.verdict;
+      for (std::size_t l = 0; l < study.ladders().size(); ++l)
+        if (study.ladders()[l].refined && study.ladders()[l].settings.back() == i) check = result.check.knobs[l].status;
+      for (const SettingTiming& t : s.timing) {
+        out << scene << ',' << s.setting.knob << ',' << describe_value(s.setting) << ',' << s.setting.role << ','
+            << to_string(t.backend) << ',' << field(s.status) << ',' << seeds << ',' << run_cells(s.against_reference);
+        for (std::size_t m = 0; m < metrics().size(); ++m) out << ',' << cells(s.value[m]) << ',' << cells(s.distance[m].rms);
+        out << ',' << field(check) << ',' << cell(t.ms_p50) << ',' << cell(t.ms_p99) << ',' << cell(t.ms_p50_low) << ','
+            << cell(t.ms_p50_high) << '\n';
+      }
+    }
+    // The noise floor: two reference runs of different seeds (the single-run columns), and one run's
+    // seed spread (the distance columns).
+    out << scene << ",reference,,noise_floor,,ok," << seeds << ',' << run_cells(result.noise_floor);
+    for (std::size_t m = 0; m < metrics().size(); ++m) out << ",,,," << cells(result.seed_spread[m]);
+    out << ",,,,,\n";
+  });
+}
+
+void write_ladders_csv(const std::string& path, const StudyResult& result) {
+  write_text_file(path, [&](std::ostream& out) {
+    out << "knob,metric,unit,level,value,role,status," << with_bounds("mean") << ',' << with_bounds("difference") << ','
+        << with_bounds("order") << ",asymptotic,statement," << with_bounds("extrapolated") << ','
+        << with_bounds("limit_distance") << ",seed_spread,check\n";
+    for (std::size_t l = 0; l < result.ladders.size(); ++l) {
+      const LadderResult& ladder = result.ladders[l];
+      const std::string check = field(result.check.knobs[l].status);
+      for (std::size_t m = 0; m < metrics().size(); ++m) {
+        const LadderMetric& lm = ladder.per_metric[m];
+        if (lm.level_values.empty()) continue;
+        const std::string start = ladder.knob + ',' + metrics()[m].name + ',' + metrics()[m].unit + ',';
+        const std::string tail = ',' + field(lm.fit.statement) + ',' + cells(lm.extrapolated) + ',' +
+                                 cells(lm.limit_distance) + ',' + cell(result.seed_spread[m].value) + ',' + check + '\n';
+        for (std::size_t k = 0; k < ladder.values.size(); ++k) {
+          out << start << k << ',' << cell(ladder.values[k]) << ',' << ladder.roles[k] << ",ok," << cells(lm.level_values[k])
+              << ',' << (k >= 1 ? cells(lm.fit.differences[k - 1].rms) : ",,") << ','
+              << (k >= 2 ? cells(lm.fit.orders[k - 2]) : ",,") << ','
+              << (lm.fit.asymptotic_from >= 0 && int(k) >= lm.fit.asymptotic_from ? "yes" : "no") << tail;
+        }
+        for (const auto& [value, why] : ladder.refused)
+          out << start << ',' << cell(value) << ",," << field(why) << ",,,,,,,,,," << tail;
+      }
+    }
+  });
+}
+
+void write_study_hdf5(const std::string& path, const Study& study, const StudyResult& result,
                       const std::vector<std::pair<std::string, std::string>>& attributes) {
   const std::string partial = path + ".partial";
-  const H5 h5{partial};
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  const H5 h5(partial);
   const hid_t file = h5.check(H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), "create the file");
   try {
-    for (const auto& [name, value] : attributes) text_attribute(h5, file, name, value);
-    text_attribute(h5, file, "reference", study.reference_description());
-    text_attribute(h5, file, "grid", std::to_string(study.grid_width()) + " x " + std::to_string(study.grid_height()));
-    const hid_t all = h5.check(H5Gcreate2(file, "runs", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), "create /runs");
-    for (std::size_t i = 0; i < runs.size(); ++i) {
-      const StudyRun& run = runs[i];
-      char name[32];
-      std::snprintf(name, sizeof name, "%03zu", i);
-      const hid_t group = h5.check(H5Gcreate2(all, name, H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), "create a run's group");
-      text_attribute(h5, group, "knob", run.setting.knob);
-      text_attribute(h5, group, "value", cell(run.setting.value));
-      text_attribute(h5, group, "role", run.setting.role);
-      text_attribute(h5, group, "backend", to_string(run.backend));
-      text_attribute(h5, group, "status", run.status);
-      number_dataset(h5, group, "frame_seconds", run.frame_seconds, "s");
-      for (const ErrorColumn& column : kErrorColumns) {
-        std::vector<double> values, knob_values;
-        for (const FrameErrors& e : run.errors) values.push_back(e.*column.member);
-        for (const FrameErrors& e : run.knob_errors) knob_values.push_back(e.*column.member);
-        number_dataset(h5, group, column.name, values, column.unit);
-        number_dataset(h5, group, std::string("knob_") + column.name, knob_values, column.unit);
+    for (const auto& [name, value] : attributes) h5.text(file, name, value);
+    h5.text(file, "reference", study.reference_description());
+    h5.text(file, "grid", std::to_string(study.grid_width()) + " x " + std::to_string(study.grid_height()));
+    h5.text(file, "seeds", std::to_string(study.seeds()) + " (the scene's seed " + std::to_string(study.seed_of(0)) +
+                               " and the next ones)");
+    h5.text(file, "verdict", result.check.verdict);
+    h5.text(file, "accepted", result.check.accepted ? "yes" : "no");
+    std::vector<double> times, snapshots;
+    for (int k = 0; k < study.frames_per_run(); ++k) times.push_back(study.scene().frame_time_s(k));
+    for (const int k : study.snapshot_frames()) snapshots.push_back(k);
+    h5.numbers(file, "frame_time_s", times, 0, "s");
+    h5.numbers(file, "panel_mm", {study.scene().domain.width_mm, study.scene().domain.height_mm}, 0, "mm");
+    h5.numbers(file, "snapshot_frames", snapshots);
+
+    const hid_t floor = h5.group(file, "noise_floor");
+    const RunDistances& d = result.noise_floor;
+    h5.estimates(floor, "between_seeds", {d.film_l1_mm, d.film_l2_mm, d.frame_psnr_db, d.stain_l1});
+    h5.text(floor, "between_seeds_rows", "film_l1_mm, film_l2_mm, frame_psnr_db, stain_l1");
+    for (std::size_t m = 0; m < metrics().size(); ++m)
+      if (!std::isnan(result.seed_spread[m].value))
+        h5.estimates(floor, std::string(metrics()[m].name) + "_seed_spread", {result.seed_spread[m]}, metrics()[m].unit);
+    H5Gclose(floor);
+
+    const hid_t settings = h5.group(file, "settings");
+    for (std::size_t i = 0; i < result.settings.size(); ++i) {
+      const hid_t group = h5.group(settings, numbered(i));
+      write_setting(h5, group, result.settings[i]);
+      H5Gclose(group);
+    }
+    H5Gclose(settings);
+
+    const hid_t ladders = h5.group(file, "ladders");
+    for (std::size_t l = 0; l < result.ladders.size(); ++l) {
+      const hid_t group = h5.group(ladders, result.ladders[l].knob);
+      write_ladder(h5, group, result.ladders[l], result.check.knobs[l]);
+      H5Gclose(group);
+    }
+    H5Gclose(ladders);
+
+    const hid_t timing = h5.group(file, "timing");
+    for (std::size_t i = 0; i < result.settings.size(); ++i) {
+      const hid_t group = h5.group(timing, numbered(i));
+      for (const SettingTiming& t : result.settings[i].timing) {
+        if (t.frame_seconds.empty()) continue;
+        const hid_t backend = h5.group(group, to_string(t.backend));
+        std::vector<double> seconds;
+        for (const std::vector<double>& seed : t.frame_seconds) seconds.insert(seconds.end(), seed.begin(), seed.end());
+        h5.numbers(backend, "frame_seconds", seconds, t.frame_seconds.front().size(), "s");
+        h5.text(backend, "device", t.device);
+        h5.numbers(backend, "ms_p50_p99_seedmin_seedmax", {t.ms_p50, t.ms_p99, t.ms_p50_low, t.ms_p50_high}, 0, "ms");
+        H5Gclose(backend);
       }
       H5Gclose(group);
     }
-    H5Gclose(all);
+    H5Gclose(timing);
   } catch (...) {
     H5Fclose(file);
     std::filesystem::remove(partial);
@@ -180,6 +306,14 @@ void write_study_hdf5(const std::string& path, const Study& study, const std::ve
   }
   h5.check(H5Fclose(file), "close the file");
   rename_into_place(partial, path);
+}
+
+void write_study_files(const std::string& folder, const Study& study, const StudyResult& result,
+                       const std::vector<std::pair<std::string, std::string>>& attributes) {
+  const std::filesystem::path dir(folder);
+  write_study_csv((dir / "study.csv").string(), study, result);
+  write_ladders_csv((dir / "ladders.csv").string(), result);
+  write_study_hdf5((dir / "study.h5").string(), study, result, attributes);
 }
 
 }  // namespace bleedsim

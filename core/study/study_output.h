@@ -1,28 +1,24 @@
 #pragma once
-// The accuracy study's files (docs/accuracy.md): study.csv, one row per setting and backend, and
-// study.h5 with every frame's time and errors. Each is written under a temporary name and renamed.
+// The accuracy study's files (docs/accuracy.md, "Files"): study.csv (a row per setting and backend,
+// and the noise floor's), ladders.csv (a row per knob, metric and level) and study.h5 (all of it,
+// with every frame's curves). Timings are kept apart from the data: the `time_*` columns of
+// study.csv, and /timing in study.h5; the rest is the same bytes for the same records. Each file is
+// written under a temporary name and renamed.
 #include <string>
 #include <utility>
 #include <vector>
 
-#include "core/study/study.h"
+#include "core/study/study_analysis.h"
 
 namespace bleedsim {
 
-// One run summed up over its frames: what a CSV row and a plot point show.
-struct StudySummary {
-  long frames = 0;
-  double ms_p50 = 0, ms_p99 = 0, frame_budget_p99_pct = 0;
-  FrameErrors mean{};    // each error's mean over the frames (NaN where not applicable)
-  double psnr_db = 0;    // from the mean squared error over all frames
-  FrameErrors knob_mean{};  // the same against the knob's finest setting (NaN without it)
-  double knob_psnr_db = 0;
-};
-StudySummary summarize(const StudyRun& run);
-
-void write_study_csv(const std::string& path, const std::string& scene_name, const std::vector<StudyRun>& runs);
-
-void write_study_hdf5(const std::string& path, const Study& study, const std::vector<StudyRun>& runs,
+void write_study_csv(const std::string& path, const Study& study, const StudyResult& result);
+void write_ladders_csv(const std::string& path, const StudyResult& result);
+void write_study_hdf5(const std::string& path, const Study& study, const StudyResult& result,
                       const std::vector<std::pair<std::string, std::string>>& attributes);
+
+// All three into `folder`.
+void write_study_files(const std::string& folder, const Study& study, const StudyResult& result,
+                       const std::vector<std::pair<std::string, std::string>>& attributes);
 
 }  // namespace bleedsim

@@ -1,5 +1,6 @@
-// bleedsim study as a user runs it, on a scene small enough for CI: the CSV, the HDF5 file and the
-// plots written; bad knobs refused with exit 2 and nothing written.
+// bleedsim study as a user runs it, on a scene small enough for CI: the tables, the HDF5 file and
+// the plots written; the same data again when run again (timings aside); bad options refused with
+// exit 2 and nothing written.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -7,8 +8,6 @@
 #include <string>
 #include <vector>
 
-#include "core/effects/particle_model.h"
-#include "core/io/scenario.h"
 #include "tests/cli/cli_harness.h"
 
 namespace bleedsim::test {
@@ -32,51 +31,110 @@ std::vector<std::string> lines_of(const std::string& text) {
   return lines;
 }
 
-TEST(StudyCommand, WritesTheTableTheDetailsAndThePlots) {
-  const fs::path folder = scratch_folder();
-  const fs::path out = folder / "study";
-  // The scene's own sub-steps: the fewest its contact allows; the study tries twice as many too.
-  const Scene scene = load_scenario(tiny_scene(folder).string()).scene;
-  const int fewest = particle_mechanics(*scene.particles, scene.domain, scene.frame_rate_hz).substeps;
-  const CliResult result = run_cli("study '" + tiny_scene(folder).string() + "' --knob substeps=" +
-                                   std::to_string(2 * fewest) + " --knob resolution=0.5,1 --backend cpu --out '" +
-                                   out.string() + "'");
-  ASSERT_EQ(result.exit_code, 0) << result.output;
-  EXPECT_NE(result.output.find("tiny: 6 settings on 1 backend(s), 6 frames each; reference: substeps " +
-                               std::to_string(2 * fewest) + ", resolution 1; compared on 16 x 12 cells"),
-            std::string::npos)
-      << result.output;
-  const std::vector<std::string> csv = lines_of(read_bytes(out / "study.csv"));
-  ASSERT_EQ(csv.size(), 7u) << read_bytes(out / "study.csv");  // header, reference, check, 2 + 2 settings
-  EXPECT_EQ(csv[0].rfind("scene,knob,value,role,backend,status,frames,ms_per_frame_p50", 0), 0u);
-  EXPECT_EQ(csv[1].rfind("tiny,reference,0,reference,cpu,ok,6,", 0), 0u) << csv[1];
-  EXPECT_EQ(csv[3].rfind("tiny,substeps," + std::to_string(fewest) + ",base,cpu,ok,6,", 0), 0u) << csv[3];
-  EXPECT_EQ(csv[6].rfind("tiny,resolution,1,base,cpu,ok,6,", 0), 0u) << csv[6];
-  EXPECT_TRUE(fs::exists(out / "study.h5"));
-  // The plots, where Debian's matplotlib is (scripts/setup installs it).
-  if (run_shell("'" + python() + "' -c 'import matplotlib'").exit_code != 0)
-    GTEST_SKIP() << "plots NOT checked: " << python() << " has no matplotlib";
-  EXPECT_TRUE(fs::exists(out / "plots" / "pareto.png")) << result.output;
-  EXPECT_TRUE(fs::exists(out / "plots" / "substeps.png")) << result.output;
-  EXPECT_TRUE(fs::exists(out / "plots" / "resolution.png")) << result.output;
+std::vector<std::string> fields_of(const std::string& line) {
+  std::vector<std::string> fields;
+  std::string field;
+  bool quoted = false;
+  for (const char c : line) {
+    if (c == '"') quoted = !quoted;
+    else if (c == ',' && !quoted) fields.push_back(field), field.clear();
+    else field += c;
+  }
+  fields.push_back(field);
+  return fields;
 }
 
-TEST(StudyCommand, BadKnobsExitTwoAndWriteNothing) {
+// study.csv without its timing columns (time_*): what two runs of one study must agree on.
+std::string without_timings(const std::string& csv) {
+  const std::vector<std::string> lines = lines_of(csv);
+  const std::vector<std::string> header = fields_of(lines.at(0));
+  std::string out;
+  for (const std::string& line : lines) {
+    const std::vector<std::string> fields = fields_of(line);
+    for (std::size_t i = 0; i < fields.size(); ++i)
+      if (header.at(i).rfind("time_", 0) != 0) out += fields[i] + ',';
+    out += '\n';
+  }
+  return out;
+}
+
+std::string study_command(const fs::path& scene, const fs::path& out, const std::string& options) {
+  return "study '" + scene.string() + "' --backend cpu --threads 2 " + options + " --out '" + out.string() + "'";
+}
+
+TEST(StudyCommand, WritesTheTablesTheDetailsAndThePlots) {
+  const fs::path folder = scratch_folder();
+  const fs::path out = folder / "study";
+  const CliResult result = run_cli(study_command(tiny_scene(folder), out, "--knob resolution=0.5,1 --seeds 3"));
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("tiny: 4 settings x 3 seeds on 1 backend(s), 12 runs of 6 frames; reference: resolution 1; "
+                               "compared on 16 x 12 cells at 6 snapshot frames"),
+            std::string::npos)
+      << result.output;
+  EXPECT_NE(result.output.find("reference (resolution 1): "), std::string::npos) << result.output;
+  const std::vector<std::string> csv = lines_of(read_bytes(out / "study.csv"));
+  ASSERT_EQ(csv.size(), 6u) << read_bytes(out / "study.csv");  // header, reference, scene, 0.5, 2, noise floor
+  EXPECT_EQ(csv[0].rfind("scene,knob,value,role,backend,status,seeds,film_l1_mm,film_l1_mm_lo,film_l1_mm_hi,", 0), 0u);
+  EXPECT_NE(csv[0].find(",covered_area_mm2,covered_area_mm2_lo,covered_area_mm2_hi,covered_area_mm2_dist,"), std::string::npos);
+  EXPECT_NE(csv[0].find(",check,time_ms_p50,time_ms_p99,time_ms_p50_lo,time_ms_p50_hi"), std::string::npos);
+  EXPECT_EQ(csv[1].rfind("tiny,reference,,reference,cpu,ok,3,0,0,0,", 0), 0u) << csv[1];
+  EXPECT_EQ(csv[2].rfind("tiny,scene,,scene,cpu,ok,3,", 0), 0u) << csv[2];
+  EXPECT_EQ(csv[3].rfind("tiny,resolution,0.5,ladder,cpu,ok,3,", 0), 0u) << csv[3];
+  EXPECT_EQ(csv[4].rfind("tiny,resolution,2,refinement,cpu,ok,3,", 0), 0u) << csv[4];
+  EXPECT_EQ(csv[5].rfind("tiny,reference,,noise_floor,,ok,3,", 0), 0u) << csv[5];
+  for (const std::string& line : csv) EXPECT_EQ(fields_of(line).size(), fields_of(csv[0]).size()) << line;
+  const std::vector<std::string> ladders = lines_of(read_bytes(out / "ladders.csv"));
+  ASSERT_GT(ladders.size(), 1u);
+  EXPECT_EQ(ladders[0].rfind("knob,metric,unit,level,value,role,status,mean,mean_lo,mean_hi,difference,", 0), 0u);
+  EXPECT_EQ(ladders[1].rfind("resolution,film_mm,mm,0,0.5,ladder,ok,", 0), 0u) << ladders[1];
+  for (const std::string& line : ladders) EXPECT_EQ(fields_of(line).size(), fields_of(ladders[0]).size()) << line;
+  EXPECT_TRUE(fs::exists(out / "study.h5"));
+  // The plots, where Debian's matplotlib is (scripts/setup installs it).
+  if (run_shell("'" + python() + "' -c 'import matplotlib, h5py'").exit_code != 0)
+    GTEST_SKIP() << "plots NOT checked: " << python() << " has no matplotlib or h5py";
+  for (const char* plot : {"pareto.png", "resolution.png", "distributions.png"})
+    EXPECT_TRUE(fs::exists(out / "plots" / plot)) << plot << "\n" << result.output;
+}
+
+TEST(StudyCommand, TwoRunsGiveTheSameDataTimingsAside) {
+  // Everything but the time_* columns of study.csv and /timing in study.h5 is the same bytes.
+  const fs::path folder = scratch_folder();
+  const fs::path scene = tiny_scene(folder);
+  for (const char* out : {"a", "b"}) {
+    const CliResult result = run_cli(study_command(scene, folder / out, "--knob blur_radius=1,2 --seeds 3 --no-plots --quiet"));
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+  }
+  EXPECT_EQ(without_timings(read_bytes(folder / "a" / "study.csv")), without_timings(read_bytes(folder / "b" / "study.csv")));
+  EXPECT_NE(read_bytes(folder / "a" / "study.csv"), read_bytes(folder / "b" / "study.csv"));  // the timings differ
+  EXPECT_EQ(read_bytes(folder / "a" / "ladders.csv"), read_bytes(folder / "b" / "ladders.csv"));
+  const auto data = [&](const char* out) {
+    const CliResult dump = run_shell("h5dump -a /verdict -a /accepted -d /frame_time_s -d /snapshot_frames -g /noise_floor "
+                                     "-g /settings -g /ladders '" + (folder / out / "study.h5").string() + "'");
+    EXPECT_EQ(dump.exit_code, 0) << dump.output;
+    return dump.output.substr(dump.output.find('\n'));  // past the line naming the file
+  };
+  EXPECT_EQ(data("a"), data("b"));
+  EXPECT_NE(data("a").find("GROUP \"/ladders\""), std::string::npos);
+}
+
+TEST(StudyCommand, BadOptionsExitTwoAndWriteNothing) {
   const fs::path folder = scratch_folder();
   const fs::path scene = tiny_scene(folder);
   const struct {
-    const char* knob;
+    const char* options;
     const char* message;
-  } cases[] = {{"substep=1,2", "--knob: no knob 'substep' (known: compression, substeps, particle_size,"},
-               {"substeps", "--knob: write it as substeps=v1,v2,... (got 'substeps')"},
-               {"substeps=20,x", "--knob substeps: expected numbers separated by commas, got 'x'"},
-               {"blur_downsample=3", "--knob blur_downsample: values of blur.downsample must be 1, 2 or 4 (got 3)"}};
+  } cases[] = {{"--knob substep=1,2", "--knob: no knob 'substep' (known: compression, substeps, particle_size,"},
+               {"--knob iterations=1,2", "--knob: no knob 'iterations': the particle model has no solver iterations"},
+               {"--knob substeps", "--knob: write it as substeps=v1,v2,... (got 'substeps')"},
+               {"--knob substeps=20,x", "--knob substeps: expected numbers separated by commas, got 'x'"},
+               {"--knob blur_downsample=3", "--knob blur_downsample: values of blur.downsample must be 1, 2 or 4 (got 3)"},
+               {"--knob resolution=1 --seeds 1", "--seeds: needs at least 2 (got 1): a confidence interval needs two runs"},
+               {"--knob compression=0.0002,0.02", "reference: the finest settings (compression 0.0002) cannot run"}};
   for (const auto& c : cases) {
-    const CliResult result = run_cli("study '" + scene.string() + "' --knob " + c.knob + " --backend cpu --out '" +
-                                     (folder / "out").string() + "'");
-    EXPECT_EQ(result.exit_code, 2) << c.knob << ": " << result.output;
+    const CliResult result = run_cli(study_command(scene, folder / "out", c.options));
+    EXPECT_EQ(result.exit_code, 2) << c.options << ": " << result.output;
     EXPECT_NE(result.output.find(c.message), std::string::npos) << result.output;
-    EXPECT_FALSE(fs::exists(folder / "out")) << c.knob;
+    EXPECT_FALSE(fs::exists(folder / "out")) << c.options;
   }
 }
 

@@ -34,7 +34,7 @@
 #include "core/runtime/simulation.h"
 #include "tests/runtime/field_values.h"
 #include "core/runtime/tissue.h"
-#include "core/study/study.h"
+#include "core/study/study_knobs.h"
 
 namespace bleedsim {
 namespace {
@@ -177,14 +177,21 @@ void expect_shrinking(const char* what, const std::vector<Difference>& e) {
 }
 
 TEST(ParticleConvergence, FilmAndPileConvergeAsTheParticlesShrink) {
-  const Ladder ladder = climb("particle size", {4.0, 2.0, 1.0}, 2.0,
-                              [](Scene& s, double f) { find_knob("particle_size")->apply(s, f); });
+  // Each size at the fewest sub-steps its own contact allows (the knob alone would hold the time
+  // step; the next test shows the fewest stable sub-steps are converged).
+  const Ladder ladder = climb("particle size", {4.0, 2.0, 1.0}, 2.0, [](Scene& s, double f) {
+    find_knob("particle_size")->apply(s, f);
+    s.particles->substeps = 0;
+  });
   expect_shrinking("film", ladder.film);
   expect_shrinking("pile height", ladder.height);
 }
 
 TEST(ParticleConvergence, TheFewestStableSubStepsAreAlreadyConverged) {
-  const auto coarse = [](Scene& s) { find_knob("particle_size")->apply(s, 2.0); };
+  const auto coarse = [](Scene& s) {
+    find_knob("particle_size")->apply(s, 2.0);
+    s.particles->substeps = 0;  // the fewest this size's contact allows
+  };
   Scene base = small_scene(1);
   coarse(base);
   const double fewest = find_knob("substeps")->base(base);

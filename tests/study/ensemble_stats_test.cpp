@@ -126,11 +126,13 @@ TEST(EnsembleDistance, IsExactWhenTheSeedsMoveBothAlike) {
   EXPECT_THROW(ensemble_distance(x, {{1.0}, {2.0}, {3.0}}), std::invalid_argument);
 }
 
-TEST(SeedSpread, IsTheRmsOfTheComponentsStandardDeviations) {
-  // Component c takes a_c · (−1, 1, −1, 1) over four seeds: its unbiased variance is a_c² · 4/3,
-  // so the spread is √(4/3 · mean a_c²) with a = (1, 2): √(10/3).
+TEST(SeedSpread, IsTheRmsDistanceBetweenTwoSeedsRuns) {
+  // Component c takes a_c · (−1, 1, −1, 1) over four seeds: its unbiased variance is a_c² · 4/3, and
+  // two runs differ by 2σ² in the mean square, so the spread is √(2 · 4/3 · mean a_c²) with
+  // a = (1, 2): √(20/3). (Directly: of the six pairs of seeds, four differ by 2a_c and two by 0, a
+  // mean square of 8/3 · a_c² — the variance's 4/3 · 2 — taken without bias over the seeds.)
   const SeedValues x = {{-1, -2}, {1, 2}, {-1, -2}, {1, 2}};
-  EXPECT_NEAR(seed_spread(x).value, std::sqrt(10.0 / 3.0), 1e-15);
+  EXPECT_NEAR(seed_spread(x).value, std::sqrt(20.0 / 3.0), 1e-14);
   EXPECT_TRUE(std::isnan(seed_spread({{1.0}}).value));  // one seed has no spread
 }
 

@@ -1,12 +1,13 @@
 #!/usr/bin/python3
 """Checks scripts/plot-study on the fixture study and on broken and unusual variants of it.
 
-- the fixture (tests/study/fixtures/study.csv) gives one PNG per knob and pareto.png, valid PNGs
-  of a sensible size, and the same bytes when run again;
-- a study.csv without a column, or with a word where a number must be, exits 2 with a message
-  naming the file, line and column, and writes nothing into plots/;
-- a study where every row was refused, and one without the film (stain only, frames identical to
-  the reference's: infinite PSNR), still give every figure.
+- the fixture (tests/study/fixtures/study/: a `bleedsim study` of a tiny scene, three seeds, with a
+  refinement the time step refused) gives one PNG per knob, pareto.png and distributions.png, valid
+  PNGs of a sensible size, and the same bytes when run again;
+- a study.csv without a column, a ladders.csv with a word where a number must be, or no study at
+  all exits 2 with a message naming the file, line and column, and writes nothing into plots/;
+- a study where every setting was refused, and one without the film (the stain only), still give
+  every figure.
 
 Run: /usr/bin/python3 tests/study/plot_study_test.py [repo root [KEEP_DIR]]
 (KEEP_DIR: where to copy the studies and their figures, to look at them.)
@@ -20,8 +21,9 @@ import subprocess
 import sys
 import tempfile
 
-FIXTURE_KNOBS = ("substeps", "particle_size", "blur_downsample", "resolution")
+FIXTURE_KNOBS = ("particle_size", "blur_radius", "resolution")
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
+FILES = ("study.csv", "ladders.csv", "study.h5")
 
 failures = []
 
@@ -45,19 +47,22 @@ def png_size(path):
     return struct.unpack(">II", data[16:24])
 
 
-def study_with(directory, fixture, edit):
-    """A study folder whose study.csv is the fixture's rows passed through edit(header, rows)."""
-    header, *rows = list(csv.reader(io.StringIO(fixture.read_text())))
-    header, rows = edit(header, rows)
-    out = io.StringIO()
-    csv.writer(out, lineterminator="\n").writerows([header] + rows)
+def study_with(directory, fixture, name="study.csv", edit=None):
+    """A study folder: the fixture's files, `name` passed through edit(header, rows)."""
     directory.mkdir()
-    (directory / "study.csv").write_text(out.getvalue())
+    for file in FILES:
+        shutil.copy(fixture / file, directory / file)
+    if edit:
+        header, *rows = list(csv.reader(io.StringIO((fixture / name).read_text())))
+        header, rows = edit(header, rows)
+        out = io.StringIO()
+        csv.writer(out, lineterminator="\n").writerows([header] + rows)
+        (directory / name).write_text(out.getvalue())
     return directory
 
 
 def expect_figures(directory, result, knobs, what):
-    expected = sorted([f"{knob}.png" for knob in knobs] + ["pareto.png"])
+    expected = sorted([f"{knob}.png" for knob in knobs] + ["pareto.png", "distributions.png"])
     written = sorted(p.name for p in (directory / "plots").iterdir())  # no temporaries left behind
     check(result.returncode == 0 and not result.stderr,
           f"{what}: exit 0, nothing on stderr ({result.stderr.strip()!r})")
@@ -94,54 +99,50 @@ def with_cell(line, name, text):
 
 
 def all_refused(header, rows):
+    """Every setting refused: its numbers empty (the noise floor's row stays, as the study writes it)."""
     status = header.index("status")
-    return header, [row[:status] + ["refused: no CUDA device"] + [""] * (len(row) - status - 1) for row in rows]
+    refused = []
+    for row in rows:
+        if row[header.index("role")] != "noise_floor":
+            row = row[:status] + ["refused: no CUDA device"] + [""] * (len(row) - status - 1)
+        refused.append(row)
+    return header, refused
 
 
 def stain_only(header, rows):
-    """The fixture as a scene without particles: no film columns, and the knobs that only touch the
-    particles leave the frame identical to the reference's."""
-    keep = []
+    """The fixture as a scene without particles: no film columns."""
     for row in rows:
-        cells = dict(zip(header, row))
-        if cells["status"] != "ok":
-            continue
-        for name in ("film_l1_mm", "film_l2_mm", "pile_height_error_mm"):
-            cells[name] = ""
-        if cells["knob"] in ("substeps", "particle_size", "blur_downsample"):
-            cells["frame_psnr_db"], cells["stain_l1"] = "inf", "0"
-        keep.append([cells[name] for name in header])
-    return header, keep
+        for name in header:
+            if name.startswith(("film_", "front_", "covered_", "volume_", "pile_")):
+                row[header.index(name)] = ""
+    return header, rows
 
 
 def main():
     root = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else pathlib.Path(__file__).resolve().parents[2])
-    fixture = root / "tests" / "study" / "fixtures" / "study.csv"
+    fixture = root / "tests" / "study" / "fixtures" / "study"
     with tempfile.TemporaryDirectory(prefix="plot-study-test-") as temporary:
         temporary = pathlib.Path(temporary)
 
-        study = temporary / "fixture"
-        study.mkdir()
-        shutil.copy(fixture, study / "study.csv")
+        study = study_with(temporary / "fixture", fixture)
         expect_figures(study, run_plot(root, study), FIXTURE_KNOBS, "fixture")
         first = {p.name: p.read_bytes() for p in (study / "plots").glob("*.png")}
         expect_figures(study, run_plot(root, study), FIXTURE_KNOBS, "fixture again")
         again = {p.name: p.read_bytes() for p in (study / "plots").glob("*.png")}
         check(first == again, "fixture again: the same bytes")
 
-        broken = study_with(temporary / "no-column", fixture, without_column("ms_per_frame_p99"))
-        expect_refusal(broken, run_plot(root, broken), ["study.csv", "line 1", "ms_per_frame_p99"],
-                       "missing column")
-        broken = study_with(temporary / "word", fixture, with_cell(5, "ms_per_frame_p50", "fast"))
-        expect_refusal(broken, run_plot(root, broken), ["study.csv", "line 5", "ms_per_frame_p50", "fast"],
+        broken = study_with(temporary / "no-column", fixture, "study.csv", without_column("time_ms_p50_lo"))
+        expect_refusal(broken, run_plot(root, broken), ["study.csv", "line 1", "time_ms_p50_lo"], "missing column")
+        broken = study_with(temporary / "word", fixture, "ladders.csv", with_cell(5, "difference", "small"))
+        expect_refusal(broken, run_plot(root, broken), ["ladders.csv", "line 5", "difference", "small"],
                        "a word for a number")
         check(not (temporary / "no-study").exists() and run_plot(root, temporary / "no-study").returncode == 2,
-              "no study.csv: exit 2")
+              "no study: exit 2")
 
-        refused = study_with(temporary / "all-refused", fixture, all_refused)
-        expect_figures(refused, run_plot(root, refused), FIXTURE_KNOBS, "every row refused")
-        stain = study_with(temporary / "stain-only", fixture, stain_only)
-        expect_figures(stain, run_plot(root, stain), FIXTURE_KNOBS, "stain only, infinite PSNR")
+        refused = study_with(temporary / "all-refused", fixture, "study.csv", all_refused)
+        expect_figures(refused, run_plot(root, refused), FIXTURE_KNOBS, "every setting refused")
+        stain = study_with(temporary / "stain-only", fixture, "study.csv", stain_only)
+        expect_figures(stain, run_plot(root, stain), FIXTURE_KNOBS, "stain only")
         if len(sys.argv) > 2:  # a folder to keep the figures in, to look at them
             for directory in (study, refused, stain):
                 shutil.copytree(directory, pathlib.Path(sys.argv[2]) / directory.name, dirs_exist_ok=True)

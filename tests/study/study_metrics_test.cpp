@@ -1,5 +1,6 @@
-// The accuracy study's metrics (core/study/study_metrics.cpp) on fields whose errors are known by hand:
-// area resampling, the pile's height, and each error against a reference.
+// The accuracy study's metrics (core/study/study_metrics.cpp) on fields whose values are known by
+// hand: area resampling, the pile's height, the blood front, a frame's measures and one run's
+// distance from another.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -57,45 +58,67 @@ FrameFields frame(float film, std::uint8_t green) {
   return f;
 }
 
-TEST(FrameErrorsTest, KnownDifferencesGiveKnownErrors) {
-  const GridFrame reference = on_grid(frame(0.04f, 100), 4, 2);
-  EXPECT_NEAR(reference.volume_mm3, 8 * 4.0 * 0.04, 1e-6);  // 8 pixels of 4 mm², 0.04 mm deep
-  EXPECT_NEAR(reference.covered_area_mm2, 32.0, 1e-12);
+TEST(FrameMeasuresTest, VolumeAreaFrontAndPileOfAKnownFilm) {
+  // 8 pixels of 4 mm², 0.04 mm deep: 1.28 mm³ over 32 mm², all of it covered, so the front is the
+  // lowest cell's centre (y = 3 mm on a 2-row grid of 2 mm cells) and the pile fills every column.
+  const FrameFields f = frame(0.04f, 100);
+  const std::vector<float> grid = film_on_grid(f, 4, 2);
+  const FrameMeasures m = measure_frame(f, grid, 4, 2, 0.0, 1000.0);
+  EXPECT_NEAR(m.volume_mm3, 8 * 4.0 * 0.04, 1e-6);
+  EXPECT_NEAR(m.covered_area_mm2, 32.0, 1e-12);
+  EXPECT_DOUBLE_EQ(m.front_mm, 3.0);
+  EXPECT_DOUBLE_EQ(m.pile_height_mm, 4.0);
+  FrameFields none = frame(0.0f, 100);
+  none.film_mm.clear();
+  EXPECT_TRUE(std::isnan(measure_frame(none, {}, 4, 2, 0.0, 1000.0).volume_mm3));
+}
+
+TEST(BloodFront, IsTheFarthestCoveredCellAlongGravity) {
+  // 4 × 4 cells of 1 mm; one covered cell at column 2, row 1 (centre (2.5, 1.5) mm).
+  std::vector<float> film(16, 0.0f);
+  EXPECT_EQ(blood_front_mm(film, 4, 4, 4, 4, 0, 1000), 0.0);  // nothing covered
+  film[1 * 4 + 2] = 0.05f;
+  EXPECT_DOUBLE_EQ(blood_front_mm(film, 4, 4, 4, 4, 0, 1000), 1.5);    // down: its y
+  EXPECT_DOUBLE_EQ(blood_front_mm(film, 4, 4, 4, 4, -1000, 0), 1.5);   // to the left: from the right edge, 4 − 2.5
+  // Down and to the right at 45°: (2.5 + 1.5)/√2 from the top-left corner.
+  EXPECT_NEAR(blood_front_mm(film, 4, 4, 4, 4, 1000, 1000), 4.0 / std::sqrt(2.0), 1e-12);
+  film[3 * 4 + 0] = 0.011f;  // just covered, lower down
+  EXPECT_DOUBLE_EQ(blood_front_mm(film, 4, 4, 4, 4, 0, 1000), 3.5);
+}
+
+TEST(RunDistanceTest, KnownDifferencesGiveKnownDistances) {
+  const GridFrame reference = on_grid(frame(0.04f, 100), 2, 1);
   const GridFrame run = on_grid(frame(0.05f, 106), 2, 1);  // compared on a coarser grid
-  const FrameErrors e = compare(run, on_grid(frame(0.04f, 100), 2, 1));
-  EXPECT_NEAR(e.film_l1_mm, 0.01, 1e-7);
-  EXPECT_NEAR(e.film_l2_mm, 0.01, 1e-7);
-  EXPECT_NEAR(e.frame_mse, 36.0 / 3.0, 1e-9);  // green off by 6 in one channel of three
-  EXPECT_NEAR(psnr_db(e.frame_mse), 10 * std::log10(255.0 * 255.0 / 12.0), 1e-9);
-  EXPECT_NEAR(e.volume_rel_error, 0.25, 1e-6);  // 0.05 against 0.04
-  EXPECT_EQ(e.covered_area_rel_error, 0.0);     // both fully covered
-  EXPECT_EQ(e.stain_l1, 0.0);
-  EXPECT_EQ(e.pile_height_error_mm, 0.0);       // both piles reach the top
+  const RunDistance d = run_distance(run, reference);
+  EXPECT_NEAR(d.film_l1_mm, 0.01, 1e-7);
+  EXPECT_NEAR(d.film_l2_mm, 0.01, 1e-7);
+  EXPECT_NEAR(d.frame_mse, 36.0 / 3.0, 1e-9);  // green off by 6 in one channel of three
+  EXPECT_NEAR(psnr_db(d.frame_mse), 10 * std::log10(255.0 * 255.0 / 12.0), 1e-9);
+  EXPECT_EQ(d.stain_l1, 0.0);
   EXPECT_TRUE(std::isinf(psnr_db(0.0)));
 }
 
-TEST(FrameErrorsTest, ASceneWithoutAFieldHasNoErrorForIt) {
+TEST(RunDistanceTest, ASceneWithoutAFieldHasNoDistanceForIt) {
   FrameFields a = frame(0.0f, 100), b = frame(0.0f, 100);
   a.film_mm.clear();
   b.film_mm.clear();
   a.stain.clear();
   b.stain.clear();
-  const FrameErrors e = compare(on_grid(a, 4, 2), on_grid(b, 4, 2));
-  EXPECT_TRUE(std::isnan(e.film_l1_mm));
-  EXPECT_TRUE(std::isnan(e.stain_l1));
-  EXPECT_TRUE(std::isnan(e.volume_rel_error));
-  EXPECT_EQ(e.frame_mse, 0.0);
+  const RunDistance d = run_distance(on_grid(a, 4, 2), on_grid(b, 4, 2));
+  EXPECT_TRUE(std::isnan(d.film_l1_mm));
+  EXPECT_TRUE(std::isnan(d.stain_l1));
+  EXPECT_EQ(d.frame_mse, 0.0);
 }
 
 TEST(CommonGrid, NoFinerThanItsLimitAndTheAspectKept) {
   int w = 640, h = 480;
   common_grid(w, h);
   EXPECT_EQ(w, kMaxGridWidth);
-  EXPECT_EQ(h, 240);
-  int small_w = 160, small_h = 120;
+  EXPECT_EQ(h, 120);
+  int small_w = 120, small_h = 90;
   common_grid(small_w, small_h);
-  EXPECT_EQ(small_w, 160);
-  EXPECT_EQ(small_h, 120);
+  EXPECT_EQ(small_w, 120);
+  EXPECT_EQ(small_h, 90);
 }
 
 }  // namespace

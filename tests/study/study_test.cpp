@@ -1,153 +1,261 @@
-// The accuracy study (core/study/study.cpp, core/study/study_knobs.cpp): the knobs change what they say, the
-// reference converges on a small scene, a setting the model cannot run is refused and recorded, and
-// bad knob values are refused before anything runs.
+// The accuracy study (core/study/study.cpp, study_analysis.cpp): its settings and ladders, its
+// seeds, its jobs (independent of one another and of their order), the analysis' determinism and
+// its refusal of records that do not fit, and bad input refused before anything runs.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
-#include "core/runtime/input_error.h"
 #include "core/effects/particle_model.h"
+#include "core/runtime/input_error.h"
+#include "core/study/job_record.h"
 #include "core/study/study.h"
+#include "core/study/study_analysis.h"
 #include "core/study/study_output.h"
 #include "tests/runtime/scenes_in_code.h"
+#include "tests/test_paths.h"
 
 namespace bleedsim {
 namespace {
 
-const StudyRun& find_run(const std::vector<StudyRun>& runs, const std::string& knob, double value) {
-  for (const StudyRun& run : runs)
-    if (run.setting.knob == knob && (run.setting.role.rfind("reference", 0) == 0 || run.setting.value == value)) return run;
-  throw std::out_of_range(knob);
-}
-
-StudySpec spec_of(std::vector<KnobSweep> sweeps, double duration_s) {
-  StudySpec spec;
-  spec.sweeps = std::move(sweeps);
-  spec.backends = {BackendKind::cpu};
-  spec.duration_s = duration_s;
-  return spec;
-}
-
-TEST(StudyReference, TheSpreadConvergesWithResolution) {
-  // The in-code spread scene (64 × 48 px, one cut) at ¼, ½, 1 and 2 × its resolution, compared on
-  // the coarsest grid (16 × 12 cells) with the reference (2 ×) and its check (4 ×). The error falls
-  // with every doubling, and the reference's own (its check's) is far below every error reported.
-  Study study(test::scene_in_code(true), spec_of({{find_knob("resolution"), {0.25, 0.5, 1.0, 2.0}}}, 1.0));
-  EXPECT_EQ(study.grid_width(), 16);
-  EXPECT_EQ(study.grid_height(), 12);
-  const std::vector<StudyRun> runs = study.run([](long) {});
-  const auto error = [&](const char* knob, double value) { return summarize(find_run(runs, knob, value)).mean.stain_l1; };
-  EXPECT_EQ(error("reference", 0), 0.0);
-  EXPECT_EQ(error("resolution", 2.0), 0.0);  // the finest setting is the reference
-  EXPECT_GT(error("resolution", 0.25), error("resolution", 0.5));
-  EXPECT_GT(error("resolution", 0.5), error("resolution", 1.0));
-  EXPECT_GT(error("resolution", 1.0), 0.0);
-  EXPECT_LT(error("reference_check", 0), 0.2 * error("resolution", 1.0))
-      << "the reference is not converged: doubling its resolution moves it by " << error("reference_check", 0);
-}
-
-TEST(StudyKnobs, ParticleSizeKeepsTheBloodsVolumeAndFlow) {
+// The in-code scene (64 × 48 px, 16 × 12 mm) with the spread, the particles and the blur, 0.1 s.
+Scene small_scene() {
   Scene scene = test::scene_in_code(true);
   scene.particles = ParticleParams{};
-  const ParticleParams before = *scene.particles;
-  const Cut cut_before = scene.cuts[0];
-  find_knob("particle_size")->apply(scene, 2.0);
-  const ParticleParams& p = *scene.particles;
-  EXPECT_DOUBLE_EQ(p.diameter_mm, 2 * before.diameter_mm);
-  EXPECT_DOUBLE_EQ(p.particle_volume_mm3, 4 * before.particle_volume_mm3);  // the same film, in a quarter as many
-  EXPECT_EQ(p.flow_mm3_per_s_per_mm, before.flow_mm3_per_s_per_mm);       // the same blood a second
-  EXPECT_EQ(scene.cuts[0].flow_mm3_per_s_per_mm, cut_before.flow_mm3_per_s_per_mm);
-  EXPECT_EQ(p.capacity, before.capacity / 4);
-}
-
-TEST(StudyKnobs, SubstepsRefineTheStepAloneFromTheFewestTheContactAllows) {
-  Scene scene = test::scene_in_code(true);
-  scene.particles = ParticleParams{};  // substeps = 0: the fewest inside the limit
-  const int fewest = particle_mechanics(*scene.particles, scene.domain, scene.frame_rate_hz).substeps;
-  const Knob& knob = *find_knob("substeps");
-  EXPECT_EQ(knob.base(scene), double(fewest));
-  EXPECT_EQ(knob.default_sweep(scene), (std::vector<double>{double(fewest), 2.0 * fewest, 4.0 * fewest}));
-  Scene fine = scene;
-  knob.apply(fine, 2 * fewest);
-  EXPECT_EQ(fine.particles->substeps, 2 * fewest);
-  // The contact is the same: only the step changed.
-  const ParticleMechanics a = particle_mechanics(*scene.particles, scene.domain, scene.frame_rate_hz);
-  const ParticleMechanics b = particle_mechanics(*fine.particles, fine.domain, fine.frame_rate_hz);
-  EXPECT_EQ(a.stiffness_per_s2, b.stiffness_per_s2);
-  EXPECT_EQ(a.damping_per_s, b.damping_per_s);
-  EXPECT_DOUBLE_EQ(b.dt_s, a.dt_s / 2);
-}
-
-Scene particle_scene() {
-  Scene scene = test::scene_in_code(true);
-  scene.particles = ParticleParams{};
+  scene.particles->capacity = 512;
+  scene.blur = BlurParams{};
+  scene.cuts = {scene.cut_at(8.0, 4.0, 0.0)};
+  scene.duration_s = 0.1;
   return scene;
 }
 
-int fewest_substeps(const Scene& scene) {
-  return particle_mechanics(*scene.particles, scene.domain, scene.frame_rate_hz).substeps;
+StudySpec spec_of(std::vector<KnobLevels> knobs, int seeds = 3) {
+  StudySpec spec;
+  spec.knobs = std::move(knobs);
+  spec.backends = {BackendKind::cpu};
+  spec.seeds = seeds;
+  spec.cpu_threads = 2;
+  return spec;
 }
 
-TEST(StudyRuns, ASettingPastTheStabilityLimitIsARefusedRow) {
-  // Half the fewest sub-steps the contact allows is past its stability limit: that row is refused
-  // with the model's reason, and the rows inside the limit run.
-  const Scene scene = particle_scene();
-  const double fewest = fewest_substeps(scene);
-  const double half = std::floor(fewest / 2);
-  Study study(scene, spec_of({{find_knob("substeps"), {half, fewest, 2 * fewest}}}, 0.1));
-  const std::vector<StudyRun> runs = study.run([](long) {});
-  const StudyRun& refused = find_run(runs, "substeps", half);
-  EXPECT_EQ(refused.status.rfind("refused: particles.substeps: a sub-step of ", 0), 0u) << refused.status;
-  EXPECT_NE(refused.status.find("use at least " + std::to_string(int(fewest)) + " sub-steps"), std::string::npos)
-      << refused.status;
-  EXPECT_TRUE(refused.errors.empty());
-  for (const double value : {fewest, 2 * fewest}) EXPECT_EQ(find_run(runs, "substeps", value).status, "ok") << value;
-}
-
-TEST(StudyRuns, AnUnrunnableReferenceStopsTheStudy) {
-  // With the sub-steps pinned at the fewest the default contact allows, a hundredth of the
-  // compression (a hundred times the stiffness, ten times the stiffness' rate) cannot run.
-  Scene scene = particle_scene();
-  scene.particles->substeps = fewest_substeps(scene);
-  const double e = scene.particles->compression;
-  Study study(scene, spec_of({{find_knob("compression"), {e / 100, e}}}, 0.1));
+std::string refusal(const Scene& scene, const StudySpec& spec) {
   try {
-    study.run([](long) {});
-    FAIL() << "an unstable reference ran";
+    Study study(scene, spec);
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("reference: the finest settings (compression 0.0002) cannot run: refused: "
-                                         "particles.substeps"),
-              std::string::npos)
-        << e.what();
+    return e.what();
+  }
+  return "";
+}
+
+TEST(StudySettings, LaddersMeetAtTheReference) {
+  // Compression coarse to fine (given in any order) and resolution: the reference is every knob's
+  // finest; each ladder's coarser levels run with the other knob at the reference's; each knob is
+  // refined once past the reference.
+  const Study study(small_scene(), spec_of({{find_knob("resolution"), {1, 0.5}},
+                                            {find_knob("compression"), {0.02, 0.08, 0.04}}}));
+  EXPECT_EQ(study.reference_description(), "compression 0.02, resolution 1");
+  const std::vector<StudySetting>& s = study.settings();
+  ASSERT_EQ(s.size(), 7u);
+  EXPECT_EQ(s[0].role, "reference");
+  EXPECT_EQ(s[1].role, "scene");
+  EXPECT_EQ(s[2].knob + " " + std::to_string(s[2].value) + " " + s[2].role, "compression 0.080000 ladder");
+  EXPECT_EQ(s[4].knob + " " + std::to_string(s[4].value) + " " + s[4].role, "compression 0.010000 refinement");
+  EXPECT_EQ(s[5].knob + " " + std::to_string(s[5].value) + " " + s[5].role, "resolution 0.500000 ladder");
+  EXPECT_EQ(s[6].knob + " " + std::to_string(s[6].value) + " " + s[6].role, "resolution 2.000000 refinement");
+  const StudyLadder& compression = study.ladders()[0];
+  EXPECT_EQ(compression.values, (std::vector<double>{0.08, 0.04, 0.02, 0.01}));
+  EXPECT_EQ(compression.settings, (std::vector<std::size_t>{2, 3, 0, 4}));
+  EXPECT_TRUE(compression.refined);
+  // The coarsest panel any setting draws: half the resolution. Eight snapshots would need eight
+  // frames; three frames are all snapshots.
+  EXPECT_EQ(study.grid_width(), 32);
+  EXPECT_EQ(study.grid_height(), 24);
+  EXPECT_EQ(study.snapshot_frames(), (std::vector<int>{0, 1, 2}));
+  // A coarser compression level holds the reference's resolution (and time step); the refinement
+  // of resolution holds the reference's compression.
+  EXPECT_EQ(study.scene_for(2, 0).particles->compression, 0.08);
+  EXPECT_EQ(study.scene_for(2, 0).domain.width_px, 64);
+  EXPECT_EQ(study.scene_for(6, 0).domain.width_px, 128);
+  EXPECT_EQ(study.scene_for(6, 0).particles->compression, 0.02);
+  EXPECT_EQ(study.scene_for(2, 0).particles->substeps, study.scene_for(0, 0).particles->substeps);
+}
+
+TEST(StudySettings, TheDefaultTimeStepHoldsTheStiffestContactTheStudyRuns) {
+  // Every knob at its defaults: the particles' refinement to half the size is the stiffest contact
+  // (four times the stiffness, twice the fewest sub-steps); the time step's ladder is its fewest
+  // sub-steps and twice that, refined to four times.
+  const Scene scene = small_scene();
+  Scene stiffest = scene;
+  find_knob("particle_size")->apply(stiffest, 0.5);
+  const double fewest = fewest_stable_substeps(stiffest);
+  const Study study(scene, spec_of({}));
+  std::vector<std::string> names;
+  for (const StudyLadder& ladder : study.ladders()) names.push_back(ladder.knob->name);
+  EXPECT_EQ(names, (std::vector<std::string>{"compression", "substeps", "particle_size", "blur_radius",
+                                             "blur_downsample", "resolution"}));
+  EXPECT_EQ(study.ladders()[1].values, (std::vector<double>{fewest, 2 * fewest, 4 * fewest}));
+  // Every refinement runs at the reference's time step: none is refused by the contact.
+  for (std::size_t i = 0; i < study.settings().size(); ++i)
+    EXPECT_FALSE(scene_problem(study.scene_for(i, 0))) << i << ": " << scene_problem(study.scene_for(i, 0)).text();
+  // blur_downsample's finest is 1: no down- or upsampling, nothing to refine.
+  EXPECT_FALSE(study.ladders()[4].refined);
+  EXPECT_EQ(study.ladders()[4].not_refined, "exact at 1: nothing to refine");
+}
+
+TEST(StudySeeds, MoveThePhysicsAndLeaveTheTissueAlone) {
+  Scene scene = small_scene();
+  scene.seed = 41;
+  scene.tissue = procedural_tissue(64, 48, 41);
+  scene.vessels = VesselParams{};
+  scene.vessel_density = procedural_vessel_density(64, 48, 41);
+  const Study study(scene, spec_of({{find_knob("resolution"), {0.5, 1}}}, 4));
+  for (int i = 0; i < 4; ++i) {
+    const Scene run = study.scene_for(0, i);
+    EXPECT_EQ(run.seed, 41u + std::uint64_t(i));
+    EXPECT_EQ(make_particle_model(run).seed, 41u + std::uint64_t(i));
+    EXPECT_EQ(run.tissue.rgba, scene.tissue.rgba) << i;
+    EXPECT_EQ(run.vessel_density, scene.vessel_density) << i;
+    // At half the resolution, the scene's own tissue and vessels drawn again from its own seed.
+    const Scene half = study.scene_for(2, i);
+    ASSERT_EQ(half.domain.width_px, 32);
+    EXPECT_EQ(half.tissue.rgba, procedural_tissue(32, 24, 41).rgba) << i;
+    EXPECT_EQ(half.vessel_density, procedural_vessel_density(32, 24, 41)) << i;
   }
 }
 
-TEST(StudyBadInput, KnobValuesAreCheckedBeforeAnythingRuns) {
-  Scene scene = test::scene_in_code(true);
-  scene.particles = ParticleParams{};
-  const auto refusal = [&](const char* knob, std::vector<double> values) {
-    try {
-      Study(scene, spec_of({{find_knob(knob), std::move(values)}}, 0.1));
-    } catch (const InputError& e) {
-      return std::string(e.what());
-    }
-    return std::string();
-  };
-  EXPECT_NE(refusal("substeps", {20.5}).find("--knob substeps: values of particles.substeps must be a whole number (got 20.5)"), std::string::npos);
-  EXPECT_NE(refusal("resolution", {-1}).find("--knob resolution: values must be positive (got -1)"), std::string::npos);
-  EXPECT_NE(refusal("blur_radius", {2}).find("--knob blur_radius: this scene has nothing it changes"), std::string::npos);
-  scene.blur = BlurParams{};
-  EXPECT_NE(refusal("blur_downsample", {3}).find("--knob blur_downsample: values of blur.downsample must be 1, 2 or 4 (got 3)"),
+TEST(StudyBadInput, IsRefusedBeforeAnythingRuns) {
+  const Scene scene = small_scene();
+  EXPECT_NE(refusal(scene, spec_of({{find_knob("resolution"), {1}}}, 1))
+                .find("--seeds: needs at least 2 (got 1): a confidence interval needs two runs"),
             std::string::npos);
-  EXPECT_EQ(find_knob("nothing"), nullptr);
-  try {
-    Study(scene, spec_of({{find_knob("substeps"), {40}}}, 0.01));
-    FAIL() << "a study of no frames was accepted";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("--duration-s: 0.01 s is less than one frame at 30 Hz"), std::string::npos)
-        << e.what();
+  EXPECT_NE(refusal(scene, spec_of({{find_knob("substeps"), {20.5}}}))
+                .find("--knob substeps: values of particles.substeps must be a whole number (got 20.5)"),
+            std::string::npos);
+  EXPECT_NE(refusal(scene, spec_of({{find_knob("resolution"), {-1}}})).find("--knob resolution: values must be positive (got -1)"),
+            std::string::npos);
+  EXPECT_NE(refusal(scene, spec_of({{find_knob("blur_downsample"), {3}}}))
+                .find("--knob blur_downsample: values of blur.downsample must be 1, 2 or 4 (got 3)"),
+            std::string::npos);
+  EXPECT_NE(refusal(scene, spec_of({{find_knob("resolution"), {1}}, {find_knob("resolution"), {0.5}}}))
+                .find("--knob resolution: is given twice"),
+            std::string::npos);
+  Scene no_blur = scene;
+  no_blur.blur.reset();
+  EXPECT_NE(refusal(no_blur, spec_of({{find_knob("blur_radius"), {2}}})).find("--knob blur_radius: this scene has nothing it changes"),
+            std::string::npos);
+  StudySpec short_run = spec_of({{find_knob("resolution"), {1}}});
+  short_run.duration_s = 0.01;
+  EXPECT_NE(refusal(scene, short_run).find("--duration-s: 0.01 s is less than one frame at 30 Hz"), std::string::npos);
+  // A hundredth of the compression is a hundred times the stiffness: the reference itself cannot
+  // run at the scene's time step.
+  EXPECT_NE(refusal(scene, spec_of({{find_knob("compression"), {0.0002, 0.02}}}))
+                .find("reference: the finest settings (compression 0.0002) cannot run: particles.substeps: a sub-step of"),
+            std::string::npos);
+}
+
+// Every job's record, run in the given order of job indices.
+std::vector<std::vector<std::uint8_t>> records_in(const Study& study, std::vector<std::size_t> order) {
+  std::vector<std::vector<std::uint8_t>> records(study.job_count());
+  for (const std::size_t j : order) records[j] = study.run_job(j, study.job(j).backend, -1);
+  return records;
+}
+
+std::string file_text(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+TEST(StudyJobs, AreIndependentOfOneAnotherAndOfTheirOrder) {
+  // Compression (with a refinement the time step cannot hold: a refused job) and resolution, three
+  // seeds: every job run forwards and again backwards gives the same data bytes, and the analysis
+  // of the same records writes the same files.
+  const Study study(small_scene(), spec_of({{find_knob("compression"), {0.04, 0.02}}, {find_knob("resolution"), {0.5, 1}}}));
+  ASSERT_EQ(study.job_count(), study.settings().size() * 3);
+  const Study::Job job = study.job(7);
+  EXPECT_EQ(job.setting, 2u);
+  EXPECT_EQ(job.seed_index, 1);
+  std::vector<std::size_t> order(study.job_count());
+  for (std::size_t j = 0; j < order.size(); ++j) order[j] = j;
+  const std::vector<std::vector<std::uint8_t>> forwards = records_in(study, order);
+  std::reverse(order.begin(), order.end());
+  const std::vector<std::vector<std::uint8_t>> backwards = records_in(study, order);
+  for (std::size_t j = 0; j < forwards.size(); ++j)
+    EXPECT_EQ(data_bytes(deserialize(forwards[j])), data_bytes(deserialize(backwards[j]))) << "job " << j;
+  EXPECT_GT(study.job_cost(study.settings().size() * 3 - 1), 0.0);
+
+  // The refinement of compression, 0.01, is past the contact's limit at the reference's time step.
+  const JobRecord refused = deserialize(forwards[3 * 3]);
+  EXPECT_EQ(study.settings()[refused.setting].role, "refinement");
+  EXPECT_EQ(refused.status.rfind("refused: particles.substeps: a sub-step of ", 0), 0u) << refused.status;
+
+  const StudyResult result = analyse(study, forwards);
+  EXPECT_EQ(result.settings[3].status, refused.status);
+  EXPECT_EQ(result.ladders[0].refused.size(), 1u);
+  EXPECT_EQ(result.check.knobs[0].status.rfind("not checked: its refinement to 0.01 did not run (refused: ", 0), 0u)
+      << result.check.knobs[0].status;
+  EXPECT_FALSE(result.check.accepted);
+  const std::filesystem::path dir = std::filesystem::path(test::binary_dir()) / "test-scratch" / "StudyJobs";
+  std::filesystem::remove_all(dir);
+  for (const char* copy : {"a", "b"}) {
+    std::filesystem::create_directories(dir / copy);
+    write_study_files((dir / copy).string(), study, analyse(study, forwards), {});
   }
+  for (const char* name : {"study.csv", "ladders.csv", "study.h5"})
+    EXPECT_EQ(file_text(dir / "a" / name), file_text(dir / "b" / name)) << name;
+}
+
+std::string analysis_refusal(const Study& study, const std::vector<std::vector<std::uint8_t>>& records) {
+  try {
+    analyse(study, records);
+  } catch (const std::runtime_error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(StudyAnalysis, RefusesRecordsThatDoNotFit) {
+  const Study study(small_scene(), spec_of({{find_knob("resolution"), {1}}}));
+  std::vector<std::size_t> all(study.job_count());
+  for (std::size_t j = 0; j < all.size(); ++j) all[j] = j;
+  const std::vector<std::vector<std::uint8_t>> records = records_in(study, all);
+  std::vector<std::vector<std::uint8_t>> fewer(records.begin(), records.end() - 1);
+  EXPECT_NE(analysis_refusal(study, fewer).find("has 9 jobs, and 8 records were given"), std::string::npos)
+      << analysis_refusal(study, fewer);
+  std::vector<std::vector<std::uint8_t>> swapped = records;
+  std::swap(swapped[1], swapped[2]);
+  EXPECT_NE(analysis_refusal(study, swapped).find("record 1 is job 2: the records must come in job order"), std::string::npos);
+  const Study other(small_scene(), spec_of({{find_knob("resolution"), {1}}}, 4));
+  EXPECT_NE(analysis_refusal(other, std::vector<std::vector<std::uint8_t>>(records.begin(), records.end()))
+                .find("jobs, and 9 records"),
+            std::string::npos);
+  std::vector<std::vector<std::uint8_t>> foreign(other.job_count(), records[0]);
+  EXPECT_NE(analysis_refusal(other, foreign).find("record 0 was made by another study"), std::string::npos);
+  std::vector<std::vector<std::uint8_t>> garbled = records;
+  garbled[4].resize(20);
+  EXPECT_NE(analysis_refusal(study, garbled).find("record 4: job record: truncated"), std::string::npos);
+}
+
+TEST(StudyAnalysis, RefusesBackendsThatDisagree) {
+  // The same job on two "backends" (both the CPU here): one cell of one run's film moved by an ulp.
+  StudySpec spec = spec_of({{find_knob("resolution"), {1}}});
+  spec.backends = {BackendKind::cpu, BackendKind::cpu};
+  const Study study(small_scene(), spec);
+  std::vector<std::size_t> all(study.job_count());
+  for (std::size_t j = 0; j < all.size(); ++j) all[j] = j;
+  std::vector<std::vector<std::uint8_t>> records = records_in(study, all);
+  EXPECT_EQ(analysis_refusal(study, records), "");
+  JobRecord r = deserialize(records[5]);
+  r.film_mm[10] = std::nextafter(r.film_mm[10], 1.0f);
+  records[5] = serialize(r);
+  EXPECT_NE(analysis_refusal(study, records).find("job 5 (reference, seed 2) gives other data on cpu than on cpu"),
+            std::string::npos)
+      << analysis_refusal(study, records);
 }
 
 }  // namespace
