@@ -83,7 +83,11 @@ LadderFit fit_ladder(const LadderInput& in) {
     if (k - 1 - a > 1) fit.statement += " (" + std::to_string(k - 1 - a) + " order estimates agree)";
     return fit;
   }
-  if (k < 2) {
+  bool unchanged = true;
+  for (const Distance& d : fit.differences) unchanged = unchanged && d.rms.value == 0 && !(d.rms.hi > 0);
+  if (unchanged) {
+    fit.statement = "unchanged: every level gives the same (the knob does not move it)";
+  } else if (k < 2) {
     fit.statement = "two levels: one difference and no order (a ladder needs three levels)";
   } else if (seeds < 3) {
     fit.statement = "fewer than three seeds: no intervals, so the asymptotic range cannot be tested";

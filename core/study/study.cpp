@@ -151,6 +151,13 @@ Study::Study(const Scene& scene, const StudySpec& spec) : base_(scene), spec_(sp
     grid_h_ = std::min(grid_h_, resolution_pixels(base_.domain.height_px, f));
   }
   common_grid(grid_w_, grid_h_);
+  for (std::size_t i = 0; i < settings_.size(); ++i) {
+    const Scene s = scene_for(i, 0);
+    double per_frame = double(s.domain.width_px) * s.domain.height_px;
+    if (s.particles)
+      per_frame += double(particle_mechanics(*s.particles, s.domain, s.frame_rate_hz).substeps) * s.particles->capacity;
+    setting_costs_.push_back(per_frame * frames_per_run());
+  }
   const int frames = frames_per_run(), snapshots = std::min(kSnapshots, frames);
   for (int i = 0; i < snapshots; ++i) snapshots_.push_back(int((long(i) + 1) * frames / snapshots) - 1);
 
@@ -200,12 +207,7 @@ Study::Job Study::job(std::size_t j) const {
   return {j / per_setting, int(j % per_setting / spec_.backends.size()), spec_.backends[j % spec_.backends.size()]};
 }
 
-double Study::job_cost(std::size_t j) const {
-  const Scene s = scene_for(job(j).setting, 0);
-  double per_frame = double(s.domain.width_px) * s.domain.height_px;
-  if (s.particles) per_frame += double(particle_mechanics(*s.particles, s.domain, s.frame_rate_hz).substeps) * s.particles->capacity;
-  return per_frame * frames_per_run();
-}
+double Study::job_cost(std::size_t j) const { return setting_costs_[job(j).setting]; }
 
 std::vector<std::uint8_t> Study::run_job(std::size_t j, BackendKind backend, int cuda_device,
                                          const std::function<void()>& frame_done) const {

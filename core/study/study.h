@@ -104,6 +104,7 @@ class Study {
   std::vector<int> snapshots_;
   int grid_w_ = 0, grid_h_ = 0;
   std::uint64_t key_ = 0;
+  std::vector<double> setting_costs_;  // job_cost() of each setting's jobs
 
   // The base scene with every knob of the study at its finest but `knob` at `value` (none: all).
   Scene at_reference_but(const Knob* knob, double value) const;

@@ -92,6 +92,15 @@ TEST(LadderFit, DifferencesInTheNoiseAreSaidToBe) {
   EXPECT_NE(f.statement.find("within the seeds' noise"), std::string::npos) << f.statement;
 }
 
+TEST(LadderFit, AMetricTheKnobDoesNotMoveIsSaidToBeUnchanged) {
+  // Every level the same values (a knob that leaves the metric alone, as the blur leaves the stain).
+  const std::vector<double> steps = {4, 2, 1};
+  const std::vector<SeedValues> same(3, SeedValues{{1.0, 2.0}, {1.5, 2.5}, {0.5, 3.0}});
+  const LadderFit f = fit(steps, same);
+  EXPECT_EQ(f.asymptotic_from, -1);
+  EXPECT_EQ(f.statement, "unchanged: every level gives the same (the knob does not move it)");
+}
+
 TEST(LadderFit, GrowingDifferencesAreNotAsymptotic) {
   // p = −1: the differences grow as the steps shrink (order −1, its interval of no width).
   const std::vector<double> steps = {4, 2, 1};
