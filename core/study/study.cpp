@@ -77,7 +77,8 @@ Study::Study(const Scene& scene, const StudySpec& spec) : base_(scene), spec_(sp
   pin_particle_model(base_);
 
   // The knobs, in the table's order (their addresses in it), each with its levels coarse to fine.
-  // Without knobs named: every knob the scene has, at its default levels; the time step's come last.
+  // Without knobs named: every knob the scene has, at its default levels; the time step's are
+  // chosen once the others' are known (below).
   const bool defaults = spec_.knobs.empty();
   if (defaults)
     for (const Knob& knob : knobs())
@@ -167,7 +168,10 @@ Study::Study(const Scene& scene, const StudySpec& spec) : base_(scene), spec_(sp
                          std::to_string(grid_w_) + "x" + std::to_string(grid_h_);
   for (const StudySetting& s : settings_) identity += "|" + s.knob + " " + format_significant(s.value, 17) + " " + s.role;
   for (const BackendKind b : spec_.backends) identity += std::string("|") + to_string(b);
-  key_ = fnv1a64(identity.data(), identity.size());
+  for (const Cut& c : base_.cuts)
+    for (const double v : {c.x_mm, c.y_mm, c.start_s, c.flow_mm3_per_s_per_mm, c.bleed_s})
+      identity += " " + format_significant(v, 17);
+  key_ = fnv1a64(base_.tissue.rgba.data(), base_.tissue.rgba.size(), fnv1a64(identity.data(), identity.size()));
 }
 
 std::uint64_t Study::seed_of(int seed_index) const {

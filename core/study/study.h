@@ -74,7 +74,8 @@ class Study {
   int grid_height() const { return grid_h_; }
   int frames_per_run() const { return base_.frame_count(); }
   const std::vector<int>& snapshot_frames() const { return snapshots_; }
-  // A fingerprint of what the study runs: a record made by another study is refused by it.
+  // A fingerprint of what the study runs (the scene's name, panel, time, seed, cuts and tissue; the
+  // settings, seeds, backends and grid): a record made by another study is refused by it.
   std::uint64_t key() const { return key_; }
 
   // The scene a setting runs with one seed.

@@ -158,6 +158,9 @@ void write_setting(const H5& h5, hid_t group, const SettingResult& s) {
 }
 
 void write_ladder(const H5& h5, hid_t group, const LadderResult& ladder, const KnobCheck& check) {
+  const Knob& knob = *find_knob(ladder.knob);
+  h5.text(group, "changes", knob.trades);
+  h5.text(group, "holds", knob.holds);
   h5.numbers(group, "values", ladder.values);
   std::string roles, refused;
   for (const std::string& r : ladder.roles) roles += (roles.empty() ? "" : ", ") + r;
