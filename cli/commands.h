@@ -10,6 +10,7 @@
 #include "core/runtime/backend.h"
 #include "core/runtime/simulation.h"
 #include "core/io/trace_synth.h"
+#include "core/scaleout/ranks.h"
 #include "core/study/study.h"
 
 namespace bleedsim::cli {
@@ -41,11 +42,22 @@ struct StudyOptions {
   std::optional<std::string> out_dir;  // default out/study/<scene>
   int seeds = kDefaultSeeds;           // each setting's ensemble
   int threads = 0;                     // the CPU backend's threads; 0: one per hardware thread
+  std::optional<std::string> shard;    // "i/K": run part i of K and write its shard file
   bool plots = true;
   bool quiet = false;
 };
 
-int study_command(const StudyOptions& options);
+// The study's jobs are shared among `ranks` (MPI, or this process alone); rank 0 writes.
+int study_command(const StudyOptions& options, const Ranks& ranks);
+
+struct StudyMergeOptions {
+  std::vector<std::string> shards;     // the shard files of one study
+  std::optional<std::string> out_dir;  // default out/study/<scene>
+  bool plots = true;
+  bool quiet = false;
+};
+
+int study_merge_command(const StudyMergeOptions& options);
 int validate_command(const std::string& scenario);
 int hash_command(const std::string& scenario, const BackendChoice& backend);
 int info_command();

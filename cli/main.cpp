@@ -54,6 +54,24 @@ std::string decimal_seed(std::string& text) {
   return "";
 }
 
+// `bleedsim study` over the MPI ranks a launcher started (or this process alone): every rank runs
+// its share of the jobs; an error ends every rank, and only rank 0 says it (every rank would say
+// the same). The ranks end MPI together when Ranks goes.
+int study_on_ranks(StudyOptions& study, bool no_plots) {
+  if (study.scenario.empty()) throw bleedsim::InputError({}, "study", "needs a scenario file (or: bleedsim study merge SHARDS...)");
+  study.plots = !no_plots;
+  bleedsim::Ranks ranks;
+  try {
+    return study_command(study, ranks);
+  } catch (const bleedsim::InputError& e) {
+    if (ranks.is_root()) std::cerr << "bleedsim: error: " << e.what() << "\n";
+    return kExitBadInput;
+  } catch (const std::exception& e) {
+    if (ranks.is_root()) std::cerr << "bleedsim: failed: " << e.what() << "\n";
+    return kExitFailed;
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -100,7 +118,7 @@ int main(int argc, char** argv) {
       "study", "what accuracy costs in time, and whether the reference is converged: each accuracy knob "
                "climbed as a ladder, every setting an ensemble over seeds, timed and compared with the reference "
                "(docs/accuracy.md)");
-  study_cmd->add_option("scenario", study.scenario, "scenario file (.toml)")->required();
+  study_cmd->add_option("scenario", study.scenario, "scenario file (.toml)");
   study_cmd->add_option("-k,--knob", study.knobs,
                         "a knob and its ladder's levels, as name=v1,v2,...; the finest is the reference's; repeat "
                         "for more (default: every knob the scene has, at its default levels). Knobs: " + knob_names +
@@ -122,6 +140,17 @@ int main(int argc, char** argv) {
   bool no_plots = false;
   study_cmd->add_flag("--no-plots", no_plots, "write study.csv, ladders.csv and study.h5 only (plot later with scripts/plot-study)");
   study_cmd->add_flag("-q,--quiet", study.quiet, "print only the files written and errors");
+  study_cmd->add_option("--shard", study.shard,
+                        "i/K: run only part i of K (0 <= i < K) and write OUT/shard-i-of-K.bleedshard, for a "
+                        "cluster's job array; `bleedsim study merge` analyses the K files (docs/scale-out.md)");
+  StudyMergeOptions merge;
+  CLI::App* merge_cmd = study_cmd->add_subcommand(
+      "merge", "put the shard files of one study (--shard i/K) back together and analyse them, as one process would");
+  merge_cmd->add_option("shards", merge.shards, "the study's shard files (.bleedshard), in any order")->required();
+  merge_cmd->add_option("-o,--out", merge.out_dir, "output folder (default out/study/<scene>)");
+  bool merge_no_plots = false;
+  merge_cmd->add_flag("--no-plots", merge_no_plots, "write the files only (plot later with scripts/plot-study)");
+  merge_cmd->add_flag("-q,--quiet", merge.quiet, "print only the files written and errors");
 
   CLI::App* info_cmd = app.add_subcommand("info", "version, build flags and available backends");
 
@@ -193,10 +222,11 @@ int main(int argc, char** argv) {
       return run_command(run);
     }
     if (*validate_cmd) return validate_command(validate_path);
-    if (*study_cmd) {
-      study.plots = !no_plots;
-      return study_command(study);
+    if (*merge_cmd) {
+      merge.plots = !merge_no_plots;
+      return study_merge_command(merge);
     }
+    if (*study_cmd) return study_on_ranks(study, no_plots);
     if (*hash_cmd) return hash_command(hash_path, hash_backend.choice());
     if (*info_cmd) return info_command();
     if (*params_cmd) return params_command(params_format);

@@ -1,7 +1,8 @@
 // bleedsim study: what accuracy costs in time, and whether the reference is converged. The scene's
-// knobs each climbed as a ladder, every setting an ensemble over seeds, run as independent jobs,
-// analysed from their records; study.csv, ladders.csv, study.h5 and the plots (scripts/plot-study)
-// in the output folder (docs/accuracy.md).
+// knobs each climbed as a ladder, every setting an ensemble over seeds, run as independent jobs
+// (shared among MPI ranks, or split into shards that `bleedsim study merge` puts back together:
+// docs/scale-out.md), analysed from their records; study.csv, ladders.csv, jobs.csv, study.h5 and
+// the plots (scripts/plot-study) in the output folder (docs/accuracy.md).
 #include <unistd.h>
 
 #include <cmath>
@@ -18,6 +19,10 @@
 #include "core/runtime/input_error.h"
 #include "core/runtime/message_text.h"
 #include "core/io/scenario.h"
+#include "core/runtime/hash.h"
+#include "core/scaleout/job_assignment.h"
+#include "core/scaleout/run_jobs.h"
+#include "core/scaleout/shard_file.h"
 #include "core/study/study_output.h"
 
 namespace bleedsim::cli {
@@ -49,9 +54,9 @@ KnobLevels parse_knob(const std::string& text) {
 }
 
 std::vector<BackendKind> backends_for(const std::string& which) {
+  if (which == "cpu") return {BackendKind::cpu};
   std::string why_not;
   const bool cuda = cuda_device_available(&why_not);
-  if (which == "cpu") return {BackendKind::cpu};
   if (which == "cuda" || which == "both") {
     if (!cuda) throw InputError({}, "--backend", "no CUDA device to time on: " + why_not);
     return which == "cuda" ? std::vector<BackendKind>{BackendKind::cuda}
@@ -113,9 +118,140 @@ void print_results(const Study& study, const StudyResult& result) {
   std::printf("reference (%s): %s\n", study.reference_description().c_str(), result.check.verdict.c_str());
 }
 
+// What a shard carries so that `merge` can build the same study: the scenario's path and the study's
+// options, the backends as they were resolved (a merge needs no device).
+constexpr std::uint32_t kStudyDescriptionVersion = 1;
+
+std::vector<std::uint8_t> describe(const StudyOptions& options, const StudySpec& spec) {
+  ByteWriter out;
+  out.u32(kStudyDescriptionVersion);
+  out.text(options.scenario);
+  out.u32(std::uint32_t(options.knobs.size()));
+  for (const std::string& knob : options.knobs) out.text(knob);
+  out.u32(std::uint32_t(spec.backends.size()));
+  for (const BackendKind backend : spec.backends) out.u32(std::uint32_t(backend));
+  out.u32(spec.duration_s ? 1u : 0u);
+  out.f64(spec.duration_s.value_or(0.0));
+  out.i32(spec.seeds);
+  out.i32(spec.cpu_threads);
+  return out.take();
+}
+
+struct DescribedStudy {
+  std::string scenario;
+  StudySpec spec;
+};
+
+DescribedStudy read_description(const std::vector<std::uint8_t>& bytes, const std::string& shard) {
+  ByteReader in(bytes.data(), bytes.size());
+  DescribedStudy d;
+  try {
+    if (in.u32("the description's version") != kStudyDescriptionVersion)
+      throw InputError({}, shard, "written by another version of bleedsim study (its description's format differs)");
+    d.scenario = in.text("the scenario's path");
+    for (std::uint32_t k = in.u32("the knob count"); k > 0; --k) d.spec.knobs.push_back(parse_knob(in.text("a knob")));
+    for (std::uint32_t b = in.u32("the backend count"); b > 0; --b) d.spec.backends.push_back(BackendKind(in.u32("a backend")));
+    const bool timed = in.u32("the duration's flag") != 0;
+    const double duration_s = in.f64("the duration");
+    if (timed) d.spec.duration_s = duration_s;
+    d.spec.seeds = in.i32("the seeds");
+    d.spec.cpu_threads = in.i32("the threads");
+  } catch (const TruncatedBytes& e) {
+    throw InputError({}, shard, std::string("its study description is cut off: ") + e.what());
+  }
+  return d;
+}
+
+// Names one study: what it runs (Study::key: the scene, its settings, seeds, backends and grid), the
+// scenario's text and the build that ran it (shards of another build must not mix).
+std::string fingerprint_of(const Study& study, const Scenario& scenario) {
+  const std::string text = hex64(study.key()) + "\n" + scenario.text + "\n" + git_sha();
+  return hex64(fnv1a64(text.data(), text.size()));
+}
+
+std::vector<double> job_costs(const Study& study) {
+  std::vector<double> costs(study.job_count());
+  for (std::size_t j = 0; j < costs.size(); ++j) costs[j] = study.job_cost(j);
+  return costs;
+}
+
+// jobs.csv: which rank, host and device ran each job, and how long it took: provenance, apart from
+// the data (it differs from run to run).
+void write_jobs_csv(const fs::path& path, const Study& study, const std::vector<JobResult>& results) {
+  const fs::path partial = path.string() + ".partial";
+  FILE* f = std::fopen(partial.c_str(), "w");
+  if (!f) throw std::runtime_error("cannot write " + partial.string());
+  std::fprintf(f, "job,knob,value,role,seed,backend,rank,host,cuda_device,seconds\n");
+  for (const JobResult& r : results) {
+    const Study::Job job = study.job(r.job);
+    const StudySetting& s = study.settings()[job.setting];
+    std::fprintf(f, "%zu,%s,%s,%s,%llu,%s,%d,%s,%d,%.6f\n", r.job, s.knob.c_str(), format_number(s.value).c_str(),
+                 s.role.c_str(), static_cast<unsigned long long>(study.seed_of(job.seed_index)), to_string(job.backend),
+                 r.origin.rank, r.origin.host.c_str(), r.origin.cuda_device, r.origin.seconds);
+  }
+  const bool written = std::fflush(f) == 0 && std::ferror(f) == 0;
+  if (std::fclose(f) != 0 || !written) throw std::runtime_error("cannot write " + partial.string());
+  fs::rename(partial, path);
+}
+
+// Each rank's share: the jobs it ran, their time and its device.
+void print_ranks(const std::vector<JobResult>& results) {
+  struct Share {
+    std::string host;
+    int device = -1;
+    long jobs = 0;
+    double seconds = 0;
+  };
+  std::vector<Share> shares;
+  for (const JobResult& r : results) {
+    if (shares.size() <= std::size_t(r.origin.rank)) shares.resize(std::size_t(r.origin.rank) + 1);
+    Share& share = shares[std::size_t(r.origin.rank)];
+    share.host = r.origin.host;
+    share.device = r.origin.cuda_device;
+    ++share.jobs;
+    share.seconds += r.origin.seconds;
+  }
+  if (shares.size() < 2) return;
+  for (std::size_t rank = 0; rank < shares.size(); ++rank)
+    std::printf("bleedsim study: rank %zu on %s, CUDA device %d: %ld jobs in %.1f s\n", rank, shares[rank].host.c_str(),
+                shares[rank].device, shares[rank].jobs, shares[rank].seconds);
+}
+
+// The analysis of every job's record, in job order, and the files and plots from it.
+int analyse_and_write(const Study& study, const Scenario& scenario, const std::vector<JobResult>& results,
+                      OutputFolder& folder, bool plots, bool quiet) {
+  std::vector<std::vector<std::uint8_t>> records;
+  records.reserve(results.size());
+  for (const JobResult& r : results) records.push_back(r.record);
+  const StudyResult result = analyse(study, records);
+  const Scene& scene = study.scene();
+  write_study_files(folder.path().string(), study, result,
+                    {{"bleedsim_version", version()}, {"git_sha", git_sha()}, {"build_flags", build_flags()},
+                     {"scene_name", scene.name}, {"scenario_path", scenario.path}, {"scenario_text", scenario.text}});
+  write_jobs_csv(folder.path() / "jobs.csv", study, results);
+  folder.keep();
+  if (!quiet) {
+    print_results(study, result);
+    print_ranks(results);
+  }
+  std::printf("bleedsim study: wrote %s, %s, %s and %s\n", (folder.path() / "study.csv").string().c_str(),
+              (folder.path() / "ladders.csv").string().c_str(), (folder.path() / "jobs.csv").string().c_str(),
+              (folder.path() / "study.h5").string().c_str());
+  if (plots && std::system(plot_command(folder.path()).c_str()) != 0)
+    std::fprintf(stderr, "bleedsim study: plots not drawn (they need Debian's python3-matplotlib and python3-h5py); "
+                         "draw them where they are installed with: scripts/plot-study %s\n",
+                 folder.path().string().c_str());
+  return 0;
+}
+
+fs::path out_dir_for(const std::optional<std::string>& out_dir, const Scene& scene) {
+  return out_dir ? fs::path(*out_dir) : fs::path("out/study") / scene.name;
+}
+
 }  // namespace
 
-int study_command(const StudyOptions& options) {
+int study_command(const StudyOptions& options, const Ranks& ranks) {
+  // Every rank reads the same input and so refuses the same bad input, before any rank runs a job.
   const Scenario scenario = load_scenario(options.scenario);
   const Scene& scene = scenario.scene;
   StudySpec spec;
@@ -125,36 +261,84 @@ int study_command(const StudyOptions& options) {
   spec.seeds = options.seeds;
   spec.cpu_threads = options.threads;
   const Study study(scene, spec);
+  const std::optional<ShardId> shard = options.shard ? std::optional<ShardId>(parse_shard(*options.shard)) : std::nullopt;
+  const fs::path dir = out_dir_for(options.out_dir, scene);
 
-  const fs::path dir = options.out_dir ? fs::path(*options.out_dir) : fs::path("out/study") / scene.name;
-  OutputFolder folder(dir, {}, "--out");
-  if (!options.quiet)
-    std::printf("bleedsim study: %s: %zu settings x %d seeds on %zu backend(s), %zu runs of %d frames; reference: %s; "
-                "compared on %d x %d cells at %zu snapshot frames\n",
-                scene.name.c_str(), study.settings().size(), study.seeds(), study.backends().size(), study.job_count(),
-                study.frames_per_run(), study.reference_description().c_str(), study.grid_width(), study.grid_height(),
+  // Rank 0 alone takes the output folder (a shard's shares its folder with the other shards' files,
+  // written whole under their own names); every rank hears whether it could.
+  std::optional<OutputFolder> folder;
+  std::exception_ptr refused;
+  if (ranks.is_root()) {
+    try {
+      if (shard) fs::create_directories(dir);
+      else folder.emplace(dir, SourcePlace{}, "--out");
+    } catch (const fs::filesystem_error& e) {
+      refused = std::make_exception_ptr(InputError({}, "--out", "cannot make " + dir.string() + ": " + e.code().message()));
+    } catch (...) {
+      refused = std::current_exception();
+    }
+  }
+  if (!ranks.all_ok(!refused)) {
+    if (refused) std::rethrow_exception(refused);
+    return kExitBadInput;
+  }
+
+  const std::vector<double> costs = job_costs(study);
+  std::vector<std::size_t> jobs;
+  if (shard) jobs = jobs_of_part(assign_jobs(costs, shard->count), shard->index);
+  else for (std::size_t j = 0; j < costs.size(); ++j) jobs.push_back(j);
+  if (!options.quiet && ranks.is_root())
+    std::printf("bleedsim study: %s: %zu settings x %d seeds on %zu backend(s), %zu runs of %d frames%s%s; "
+                "reference: %s; compared on %d x %d cells at %zu snapshot frames\n",
+                scene.name.c_str(), study.settings().size(), study.seeds(), study.backends().size(), jobs.size(),
+                study.frames_per_run(), shard ? (" (shard " + *options.shard + ")").c_str() : "",
+                ranks.size() > 1 ? (" over " + std::to_string(ranks.size()) + " ranks").c_str() : "",
+                study.reference_description().c_str(), study.grid_width(), study.grid_height(),
                 study.snapshot_frames().size());
   std::fflush(stdout);
-  Progress progress(long(study.job_count()) * study.frames_per_run(), !options.quiet && isatty(STDERR_FILENO));
+  // The progress bar follows this process's own jobs (all of them in one process).
+  long frames_here = 0;
+  const std::vector<int> owners = assign_jobs([&] {
+    std::vector<double> c;
+    for (const std::size_t j : jobs) c.push_back(costs[j]);
+    return c;
+  }(), ranks.size());
+  for (std::size_t k = 0; k < jobs.size(); ++k) frames_here += owners[k] == ranks.rank() ? study.frames_per_run() : 0;
+  Progress progress(frames_here, !options.quiet && ranks.is_root() && isatty(STDERR_FILENO));
   long frames = 0;
-  const std::vector<std::vector<std::uint8_t>> records = run_all_jobs(study, [&] { progress.update(++frames); });
+  const int device = std::max(0, ranks.cuda_device());
+  const std::vector<JobResult> results = run_jobs(ranks, costs, jobs, [&](std::size_t j) {
+    return study.run_job(j, study.job(j).backend, device, [&] { progress.update(++frames); });
+  });
   progress.clear();
-  const StudyResult result = analyse(study, records);
+  if (!ranks.is_root()) return 0;
 
-  write_study_files(folder.path().string(), study, result,
-                    {{"bleedsim_version", version()}, {"git_sha", git_sha()}, {"build_flags", build_flags()},
-                     {"scene_name", scene.name}, {"scenario_path", scenario.path}, {"scenario_text", scenario.text}});
-  folder.keep();
-  if (!options.quiet) print_results(study, result);
-  std::printf("bleedsim study: wrote %s, %s and %s\n", (folder.path() / "study.csv").string().c_str(),
-              (folder.path() / "ladders.csv").string().c_str(), (folder.path() / "study.h5").string().c_str());
-  if (options.plots) {
-    if (std::system(plot_command(folder.path()).c_str()) != 0)
-      std::fprintf(stderr, "bleedsim study: plots not drawn (they need Debian's python3-matplotlib and python3-h5py); "
-                           "draw them where they are installed with: scripts/plot-study %s\n",
-                   folder.path().string().c_str());
+  if (shard) {
+    const fs::path path = dir / shard_file_name(*shard);
+    write_shard(path.string(), {fingerprint_of(study, scenario), describe(options, spec), costs.size(), *shard, results});
+    std::printf("bleedsim study: wrote %s (%zu of %zu jobs); merge the %d shards with: bleedsim study merge\n",
+                path.string().c_str(), results.size(), costs.size(), shard->count);
+    return 0;
   }
-  return 0;
+  return analyse_and_write(study, scenario, results, *folder, options.plots, options.quiet);
+}
+
+int study_merge_command(const StudyMergeOptions& options) {
+  // Every shard is read and checked before anything is made.
+  const MergedShards merged = merge_shards(options.shards);
+  const std::string& first = options.shards.front();
+  const DescribedStudy described = read_description(merged.study, first);
+  const Scenario scenario = load_scenario(described.scenario);
+  const Study study(scenario.scene, described.spec);
+  if (fingerprint_of(study, scenario) != merged.fingerprint)
+    throw InputError({}, first,
+                     "its study is not the one " + described.scenario + " and this build make now (the scenario, the "
+                     "files it names or bleedsim changed since the shards were written)");
+  OutputFolder folder(out_dir_for(options.out_dir, study.scene()), SourcePlace{}, "--out");
+  if (!options.quiet)
+    std::printf("bleedsim study merge: %s: %zu shards, %zu jobs\n", study.scene().name.c_str(), merged.shard_count,
+                merged.results.size());
+  return analyse_and_write(study, scenario, merged.results, folder, options.plots, options.quiet);
 }
 
 }  // namespace bleedsim::cli

@@ -281,7 +281,7 @@ std::vector<std::uint8_t> Study::run_job(std::size_t j, BackendKind backend, int
 
 std::vector<std::vector<std::uint8_t>> run_all_jobs(const Study& study, const std::function<void()>& frame_done) {
   std::vector<std::vector<std::uint8_t>> records;
-  for (std::size_t j = 0; j < study.job_count(); ++j) records.push_back(study.run_job(j, study.job(j).backend, -1, frame_done));
+  for (std::size_t j = 0; j < study.job_count(); ++j) records.push_back(study.run_job(j, study.job(j).backend, 0, frame_done));
   return records;
 }
 

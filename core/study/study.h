@@ -91,7 +91,7 @@ class Study {
   Job job(std::size_t j) const;
   // A rough relative cost, for sharing jobs out: frames × (particle steps a frame × capacity + pixels).
   double job_cost(std::size_t j) const;
-  // Runs job j on `backend` (on CUDA device `cuda_device`; −1: the current one) and returns its
+  // Runs job j on `backend` (on CUDA device `cuda_device`: Ranks::cuda_device() under MPI, else 0) and returns its
   // record's bytes. A setting the model refuses (a contact too stiff for the time step) is a record
   // whose status says why. `frame_done` hears each frame (a refused job's all at once).
   std::vector<std::uint8_t> run_job(std::size_t j, BackendKind backend, int cuda_device,
