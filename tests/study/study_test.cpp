@@ -160,7 +160,7 @@ TEST(StudyBadInput, IsRefusedBeforeAnythingRuns) {
 // Every job's record, run in the given order of job indices.
 std::vector<std::vector<std::uint8_t>> records_in(const Study& study, std::vector<std::size_t> order) {
   std::vector<std::vector<std::uint8_t>> records(study.job_count());
-  for (const std::size_t j : order) records[j] = study.run_job(j, study.job(j).backend, -1);
+  for (const std::size_t j : order) records[j] = study.run_job(j, study.job(j).backend, 0);
   return records;
 }
 
