@@ -15,26 +15,19 @@ Run: mpi_check.py --mpirun MPIRUN --check MPI_CHECK --scratch DIR [--mpirun-flag
 Every command has a time limit: a hang fails the test instead of holding CI. In a sanitizer build,
 LeakSanitizer is given FILE (what Open MPI's runtime never frees) and full stacks to match it on.
 """
-import argparse
 import os
 import re
-import shutil
-import subprocess
 import sys
+
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from mpi_harness import Expectations, arguments, environment, run as run_limited  # noqa: E402
 
 LIMIT_S = 120
 
 
 def run(command, env):
-    print("$", " ".join(command), flush=True)
-    try:
-        done = subprocess.run(command, env=env, capture_output=True, text=True, timeout=LIMIT_S)
-    except subprocess.TimeoutExpired:
-        print(f"FAIL: still running after {LIMIT_S} s (a rank waits for another that will never answer?)")
-        sys.exit(1)
-    sys.stdout.write(done.stdout)
-    sys.stdout.write(done.stderr)
-    return done
+    return run_limited(command, env, LIMIT_S)
 
 
 def same_bytes(a, b):
@@ -43,34 +36,15 @@ def same_bytes(a, b):
 
 
 def main():
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--mpirun", required=True)
-    parser.add_argument("--mpirun-flag", action="append", default=[], help="a flag for mpirun (repeat)")
-    parser.add_argument("--check", required=True)
-    parser.add_argument("--scratch", required=True)
-    parser.add_argument("--lsan-suppressions")
-    args = parser.parse_args()
-
+    args = arguments("--check", "run_jobs over real MPI ranks")
     scratch = args.scratch
-    shutil.rmtree(scratch, ignore_errors=True)
-    os.makedirs(scratch)
-    # CI runs as root, which Open MPI's mpirun refuses unless told.
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
-    if args.lsan_suppressions:
-        env["LSAN_OPTIONS"] = f"suppressions={args.lsan_suppressions}:print_suppressions=0"
-        # Open MPI is built without frame pointers: the fast unwinder stops in its first frame, too
-        # early to see which library allocated.
-        env["ASAN_OPTIONS"] = ":".join(filter(None, [env.get("ASAN_OPTIONS"), "fast_unwind_on_malloc=0"]))
+    env = environment(args.lsan_suppressions)
 
     def mpirun(n, *rest):
         return [args.mpirun, "-n", str(n), *args.mpirun_flag, args.check, *rest]
 
-    failures = []
-
-    def expect(condition, what):
-        print(("ok   " if condition else "FAIL ") + what, flush=True)
-        if not condition:
-            failures.append(what)
+    tally = Expectations()
+    expect = tally.expect
 
     # 1. One process, then one and two ranks: the same bytes.
     alone = os.path.join(scratch, "alone.dump")
@@ -116,11 +90,7 @@ def main():
     expect(done.returncode == 0 and os.path.exists(merged) and same_bytes(alone, merged),
            "the merged shards give one process's records bit for bit")
 
-    if failures:
-        print(f"{len(failures)} check(s) failed")
-        return 1
-    print("all checks passed")
-    return 0
+    return tally.verdict()
 
 
 if __name__ == "__main__":

@@ -11,16 +11,17 @@ ranks of the two-rank run. That the comparison can fail is shown on a study with
 Run: study_ranks_check.py --bleedsim CLI --mpirun MPIRUN --scratch DIR [--mpirun-flag FLAG ...]
                           [--lsan-suppressions FILE]
 """
-import argparse
 import csv
 import glob
 import os
-import shutil
-import subprocess
 import sys
 
 import h5py
 import numpy as np
+
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "scaleout"))
+from mpi_harness import Expectations, arguments, environment, run as run_limited  # noqa: E402
 
 LIMIT_S = 300
 SCENE = """[scene]
@@ -45,15 +46,7 @@ STUDY = ["--backend", "cpu", "--threads", "1", "--knob", "resolution=0.5,1", "--
 
 
 def run(command, env):
-    print("$", " ".join(command), flush=True)
-    try:
-        done = subprocess.run(command, env=env, capture_output=True, text=True, timeout=LIMIT_S)
-    except subprocess.TimeoutExpired:
-        print(f"FAIL: still running after {LIMIT_S} s")
-        sys.exit(1)
-    sys.stdout.write(done.stdout)
-    sys.stdout.write(done.stderr)
-    return done
+    return run_limited(command, env, LIMIT_S)
 
 
 def h5_contents(path):
@@ -100,34 +93,18 @@ def differences(a, b):
 
 
 def main():
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--bleedsim", required=True)
-    parser.add_argument("--mpirun", required=True)
-    parser.add_argument("--mpirun-flag", action="append", default=[])
-    parser.add_argument("--scratch", required=True)
-    parser.add_argument("--lsan-suppressions")
-    args = parser.parse_args()
-
+    args = arguments("--bleedsim", "bleedsim study over MPI ranks and shards")
     scratch = args.scratch
-    shutil.rmtree(scratch, ignore_errors=True)
-    os.makedirs(scratch)
     scene = os.path.join(scratch, "tiny.toml")
     with open(scene, "w") as f:
         f.write(SCENE)
-    env = dict(os.environ, OMPI_ALLOW_RUN_AS_ROOT="1", OMPI_ALLOW_RUN_AS_ROOT_CONFIRM="1")
-    if args.lsan_suppressions:
-        env["LSAN_OPTIONS"] = f"suppressions={args.lsan_suppressions}:print_suppressions=0"
-        env["ASAN_OPTIONS"] = ":".join(filter(None, [env.get("ASAN_OPTIONS"), "fast_unwind_on_malloc=0"]))
+    env = environment(args.lsan_suppressions)
 
     def mpirun(n, *rest):
         return [args.mpirun, "-n", str(n), *args.mpirun_flag, args.bleedsim, *rest]
 
-    failures = []
-
-    def expect(condition, what):
-        print(("ok   " if condition else "FAIL ") + what, flush=True)
-        if not condition:
-            failures.append(what)
+    tally = Expectations()
+    expect = tally.expect
 
     def study(command, out):
         done = run(command + ["--out", out], env)
@@ -165,11 +142,7 @@ def main():
     if study([args.bleedsim, "study", scene, "--seeds", "4", *STUDY], other):
         expect(differences(reference, study_data(other)), "a study with other seeds is told apart")
 
-    if failures:
-        print(f"{len(failures)} check(s) failed")
-        return 1
-    print("all checks passed")
-    return 0
+    return tally.verdict()
 
 
 if __name__ == "__main__":
