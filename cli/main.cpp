@@ -60,7 +60,7 @@ std::string decimal_seed(std::string& text) {
 int study_on_ranks(StudyOptions& study, bool no_plots) {
   if (study.scenario.empty()) throw bleedsim::InputError({}, "study", "needs a scenario file (or: bleedsim study merge SHARDS...)");
   study.plots = !no_plots;
-  bleedsim::Ranks ranks;
+  bleedsim::Ranks ranks(study.backend != "cpu");
   try {
     return study_command(study, ranks);
   } catch (const bleedsim::InputError& e) {

@@ -212,9 +212,12 @@ void print_ranks(const std::vector<JobResult>& results) {
     share.seconds += r.origin.seconds;
   }
   if (shares.size() < 2) return;
-  for (std::size_t rank = 0; rank < shares.size(); ++rank)
-    std::printf("bleedsim study: rank %zu on %s, CUDA device %d: %ld jobs in %.1f s\n", rank, shares[rank].host.c_str(),
-                shares[rank].device, shares[rank].jobs, shares[rank].seconds);
+  for (std::size_t rank = 0; rank < shares.size(); ++rank) {
+    const Share& s = shares[rank];
+    const std::string device = s.device >= 0 ? "CUDA device " + std::to_string(s.device) : "no CUDA device";
+    std::printf("bleedsim study: rank %zu on %s, %s: %ld jobs in %.1f s\n", rank, s.host.c_str(), device.c_str(), s.jobs,
+                s.seconds);
+  }
 }
 
 // The analysis of every job's record, in job order, and the files and plots from it.

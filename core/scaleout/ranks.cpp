@@ -34,7 +34,7 @@ bool launched_by_mpi() {
 
 }  // namespace
 
-Ranks::Ranks() : host_(host_name()) {
+Ranks::Ranks(bool with_cuda) : host_(host_name()) {
 #if BLEEDSIM_HAVE_MPI
   int initialised = 0, finalised = 0;
   MPI_Initialized(&initialised);
@@ -56,7 +56,7 @@ Ranks::Ranks() : host_(host_name()) {
     MPI_Comm_free(&host_ranks);
   }
 #endif
-  const int devices = cuda_device_count();
+  const int devices = with_cuda ? cuda_device_count() : 0;
   cuda_device_ = devices > 0 ? local_rank_ % devices : -1;
 }
 

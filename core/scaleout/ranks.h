@@ -14,7 +14,9 @@ class Ranks {
   // rank 0 of 1 and MPI is left untouched, so a plain `bleedsim study` never starts MPI's runtime.
   // MPI already started by the host is joined and left running. Throws std::logic_error once MPI
   // has ended in this process (it starts once per process: hold one Ranks, not one after another).
-  Ranks();
+  // with_cuda false (a study of the CPU backend alone): no rank asks CUDA for its devices, which
+  // starts the driver in every rank for nothing, and cuda_device() is -1.
+  explicit Ranks(bool with_cuda = true);
   // Ends MPI when this Ranks started it. Every rank must get here: MPI_Finalize waits for them all.
   ~Ranks();
   Ranks(const Ranks&) = delete;
@@ -28,7 +30,8 @@ class Ranks {
   int local_rank() const { return local_rank_; }
   const std::string& host() const { return host_; }
   // The CUDA device for this rank's jobs: its local rank modulo the devices this process sees
-  // (after CUDA_VISIBLE_DEVICES); -1 when it sees none. Pass it on in BackendChoice::cuda_device.
+  // (after CUDA_VISIBLE_DEVICES); -1 when it sees none or was made without CUDA. Pass it on in
+  // BackendChoice::cuda_device.
   int cuda_device() const { return cuda_device_; }
 
   // True when every rank passes true (a logical and over the ranks; call it on every rank). A check
