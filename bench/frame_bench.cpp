@@ -118,7 +118,7 @@ struct FrameScene {
   double film_share = 0.0;     // ... and the share of the panel it covers
 
   Buffer position, age, units, film, weights, low, across, blurred, cuts, stain, tissue, tables, residue, frame_rgba,
-      sweep;
+      sweep, fixed_light;
   std::vector<float> segments;  // the suction's path over one frame, as uploaded to `sweep`
   double reach_mm = 0.0;        // the suction's radius
   SpreadPixel spread_work{};
@@ -219,8 +219,11 @@ struct FrameScene {
     Scene lit = scene;
     lit.optics = OpticsParams{};
     lit.trail = TrailParams{};
+    fixed_light = backend->allocate(fixed_light_bytes(lit));
+    make_fixed_light(lit, *backend, "blend", fixed_light.as<float>());
     lit_blend_work = bleedsim::blend_work(lit, tables.as<const float>(), tissue.as<const std::uint8_t>(), stain.as<const float>(),
-                           blurred.as<const float>(), residue.as<const float>(), frame_rgba.as<std::uint8_t>());
+                           blurred.as<const float>(), residue.as<const float>(), frame_rgba.as<std::uint8_t>(),
+                           fixed_light.as<const float>());
     trail_work = {film.as<const float>(), residue.as<float>(), float(lit.trail->residue),
                   trail_decay_per_frame(*lit.trail, lit.frame_rate_hz), grid};
 

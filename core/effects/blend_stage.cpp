@@ -53,7 +53,8 @@ Headlight headlight(const OpticsParams& o, const Domain& d) {
 }
 
 BlendPixel blend_work(const Scene& scene, const float* tables, const std::uint8_t* tissue_rgba, const float* stain,
-                      const float* film_mm, const float* residue_mm, std::uint8_t* frame_rgba) {
+                      const float* film_mm, const float* residue_mm, std::uint8_t* frame_rgba,
+                      const float* fixed_light) {
   const OpticsParams optics = scene.optics.value_or(OpticsParams{});
   const PixelGrid grid = scene.domain.grid();
   return BlendPixel{tissue_rgba,
@@ -68,27 +69,42 @@ BlendPixel blend_work(const Scene& scene, const float* tables, const std::uint8_
                     0.5f / grid.mm_per_px_x,
                     0.5f / grid.mm_per_px_y,
                     grid,
-                    frame_rgba};
+                    frame_rgba,
+                    scene.optics ? fixed_light : nullptr};
+}
+
+std::size_t fixed_light_bytes(const Scene& scene) {
+  return scene.optics ? scene.domain.pixels().to<std::size_t>() * kFixedLightChannels * sizeof(float) : 0;
+}
+
+void make_fixed_light(const Scene& scene, Backend& backend, const std::string& stage, float* fixed) {
+  backend.run(stage, FixedLightPixel{headlight(*scene.optics, scene.domain), scene.domain.grid(), fixed});
 }
 
 BlendStage::BlendStage(const StageKind& kind, const Scene& scene, State& state, Backend& backend)
     : Stage(kind),
       tissue_(allocate(backend, rgba_bytes(scene))),
-      tables_(allocate(backend, kOpticsTableFloats * sizeof(float))) {
+      tables_(allocate(backend, kOpticsTableFloats * sizeof(float))),
+      fixed_light_(allocate(backend, fixed_light_bytes(scene))) {
   const auto input_or_null = [&](const char* name) {
     return name ? input(scene, state, name).data.as<const float>() : nullptr;
   };
   Field& frame = add_field(scene, state, backend, "frame");
+  if (scene.optics) make_fixed_light(scene, backend, name(), fixed_light_.as<float>());
   const std::vector<float> tables = optics_tables();
   backend.upload(tables_.data(), tables.data(), tables.size() * sizeof(float));
   backend.upload(tissue_.data(), scene.tissue.rgba.data(), rgba_bytes(scene));
   work_ = blend_work(scene, tables_.as<const float>(), tissue_.as<const std::uint8_t>(),
                      input_or_null(blend_stain_field(scene)), input_or_null(blend_film_field(scene)),
-                     input_or_null(blend_residue_field(scene)), frame.data.as<std::uint8_t>());
+                     input_or_null(blend_residue_field(scene)), frame.data.as<std::uint8_t>(),
+                     fixed_light_.as<const float>());
 }
 
 MemoryParts BlendStage::memory_for(const Scene& scene) {
-  return {scene.domain.memory(2 * 4), {"scene.width_px", "the blend's optical tables", Count(kOpticsTableFloats * sizeof(float))}};
+  // The tissue and the frame, RGBA8; with [optics] the fixed light.
+  const std::size_t per_pixel = 2 * 4 + (scene.optics ? kFixedLightChannels * sizeof(float) : 0);
+  return {scene.domain.memory(per_pixel),
+          {"scene.width_px", "the blend's optical tables", Count(kOpticsTableFloats * sizeof(float))}};
 }
 
 void BlendStage::run(const Scene&, State&, Backend& backend) { launch(backend, work_); }

@@ -1,5 +1,6 @@
 #pragma once
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "core/effects/optics_params.h"
@@ -21,6 +22,7 @@ class BlendStage final : public Stage {
  private:
   Buffer tissue_;  // the scene's tissue, uploaded once
   Buffer tables_;  // optics_tables(), uploaded once
+  Buffer fixed_light_;  // with [optics]: the headlight's fixed light, made once
   BlendPixel work_{};
 };
 
@@ -45,8 +47,16 @@ BloodOptics blood_optics(const OpticsParams& optics);
 Headlight headlight(const OpticsParams& optics, const Domain& domain);
 
 // The blend's work over a scene's fields (stain, film and residue may be null), reading the
-// tables at `tables` (optics_tables(), on the backend that runs it): what BlendStage runs.
+// tables at `tables` (optics_tables(), on the backend that runs it) and, with [optics], the fixed
+// light at `fixed_light` (make_fixed_light's; null: computed pixel by pixel, the same bytes):
+// what BlendStage runs.
 BlendPixel blend_work(const Scene& scene, const float* tables, const std::uint8_t* tissue_rgba, const float* stain,
-                      const float* film_mm, const float* residue_mm, std::uint8_t* frame_rgba);
+                      const float* film_mm, const float* residue_mm, std::uint8_t* frame_rgba,
+                      const float* fixed_light = nullptr);
+
+// The headlight's fixed light (FixedLightPixel) of a scene with [optics]: its bytes (0 without),
+// and its making into `fixed` on the backend, a run counted under `stage`.
+std::size_t fixed_light_bytes(const Scene& scene);
+void make_fixed_light(const Scene& scene, Backend& backend, const std::string& stage, float* fixed);
 
 }  // namespace bleedsim

@@ -20,9 +20,36 @@ struct BloodOptics {
   float stain_depth_mm;
 };
 
+// What the headlight gives a pixel that the scene alone fixes: its irradiance (1 without falloff),
+// and what it reflects to the lens while nothing stands on it — reflected_to_lens over the bare,
+// level tissue, which is also its value under a film at height 0 with no slope.
+constexpr int kFixedLightChannels = 2;
+
+BLEEDSIM_HD inline float headlight_irradiance(const Headlight& l, float x_mm, float y_mm) {
+  return l.falloff ? headlight_falloff(l, x_mm, y_mm) : 1.0f;
+}
+
+// The fixed light of every pixel, made once per run (BlendStage): a frame reads two floats where
+// it would compute a falloff and a lobe, which are most of a lit pixel's arithmetic.
+struct FixedLightPixel {
+  Headlight light;
+  PixelGrid grid;
+  float* fixed;  // kFixedLightChannels a pixel: irradiance, the bare tissue's highlight
+
+  BLEEDSIM_HD int width() const { return grid.width; }
+  BLEEDSIM_HD int height() const { return grid.height; }
+  BLEEDSIM_HD void operator()(int i, int j) const {
+    const float x = pixel_centre_x_mm(grid, i), y = pixel_centre_y_mm(grid, j);
+    float* out = fixed + kFixedLightChannels * (std::size_t(j) * grid.width + i);
+    out[0] = headlight_irradiance(light, x, y);
+    out[1] = reflected_to_lens(light, x, y, 0.0f, 0.0f, 0.0f);
+  }
+};
+
 // The stage's work, pixel by pixel (core/physics/pixel_kernels.h runs it). stain, film_mm and
 // residue_mm may be null: a scene without that effect shows none of it; transmission is needed
-// with any of them. lit: the scene has [optics], so the headlight's falloff and highlights apply.
+// with any of them. lit: the scene has [optics], so the headlight's falloff and highlights apply;
+// fixed_light, FixedLightPixel's field then (or null: computed here, the same bits).
 struct BlendPixel {
   const std::uint8_t* tissue_rgba;
   const float* stain;
@@ -36,6 +63,7 @@ struct BlendPixel {
   float half_inverse_pitch_x, half_inverse_pitch_y;  // 1 / (2 · the pixel's size in mm): the slope's step
   PixelGrid grid;
   std::uint8_t* frame_rgba;
+  const float* fixed_light = nullptr;
 
   BLEEDSIM_HD int width() const { return grid.width; }
   BLEEDSIM_HD int height() const { return grid.height; }
@@ -71,8 +99,12 @@ struct BlendPixel {
         slope_x = (film_at(i + 1, j) - film_at(i - 1, j)) * half_inverse_pitch_x;
         slope_y = (film_at(i, j + 1) - film_at(i, j - 1)) * half_inverse_pitch_y;
       }
-      const float highlight = reflected_to_lens(light, x, y, z, slope_x, slope_y);
-      const float irradiance = light.falloff ? headlight_falloff(light, x, y) : 1.0f;
+      // Bare and level (±0 compare equal to 0, as they do in reflected_to_lens): the fixed light's
+      // highlight is this pixel's, bit for bit.
+      const bool bare = z == 0.0f && slope_x == 0.0f && slope_y == 0.0f;
+      const float* fixed = fixed_light ? fixed_light + kFixedLightChannels * p : nullptr;
+      const float highlight = fixed && bare ? fixed[1] : reflected_to_lens(light, x, y, z, slope_x, slope_y);
+      const float irradiance = fixed ? fixed[0] : headlight_irradiance(light, x, y);
       for (int c = 0; c < 3; ++c) light_c[c] = (light_c[c] + highlight) * irradiance;
     }
     std::uint8_t* frame = frame_rgba + 4 * p;

@@ -13,6 +13,7 @@
   X(SpreadPixel)                  \
   X(SpreadSettle)                 \
   X(BlendPixel)                   \
+  X(FixedLightPixel)              \
   X(BlurDownsample)               \
   X(BlurGaussian)                 \
   X(BlurUpsample)                 \

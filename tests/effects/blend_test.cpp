@@ -5,6 +5,7 @@
 // computed independently in NumPy, are tests/effects/optics_colours.py's.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -33,13 +34,14 @@ struct Compositor {
   const float* boundaries = tables.data() + kSrgbBytes;
 
   BlendPixel pixel(const std::uint8_t* tissue, const float* stain, const float* film, const float* residue,
-                   const OpticsParams& optics, bool lit, const Domain& domain, std::uint8_t* frame) const {
+                   const OpticsParams& optics, bool lit, const Domain& domain, std::uint8_t* frame,
+                   const float* fixed_light = nullptr) const {
     // Unlit, a scene draws its blood with the defaults' absorption: the tests that pass lit = false
     // pass those.
     Scene scene;
     scene.domain = domain;
     if (lit) scene.optics = optics;
-    return blend_work(scene, tables.data(), tissue, stain, film, residue, frame);
+    return blend_work(scene, tables.data(), tissue, stain, film, residue, frame, fixed_light);
   }
 };
 
@@ -140,8 +142,9 @@ struct Panel {
         tissue(std::size_t(width) * height * 4, grey),
         frame(tissue.size()),
         film(std::size_t(width) * height, 0.0f) {}
-  void draw(const Compositor& c, const OpticsParams& optics) {
-    const BlendPixel blend = c.pixel(tissue.data(), nullptr, film.data(), nullptr, optics, true, domain, frame.data());
+  void draw(const Compositor& c, const OpticsParams& optics, const float* fixed_light = nullptr) {
+    const BlendPixel blend =
+        c.pixel(tissue.data(), nullptr, film.data(), nullptr, optics, true, domain, frame.data(), fixed_light);
     for (int j = 0; j < domain.height_px; ++j)
       for (int i = 0; i < domain.width_px; ++i) blend(i, j);
   }
@@ -217,6 +220,45 @@ TEST(Highlight, ASphericalCapShowsOneAtItsMirrorPoint) {
   EXPECT_LE(std::hypot(mx - sx, my - sy), pitch);
   // And nothing off the cap: the tissue around stays black.
   EXPECT_EQ(panel.at(10, 10), 0);
+}
+
+// The fixed light the stage makes once (FixedLightPixel) stands in for the falloff everywhere and
+// for the whole lobe where nothing stands on the tissue: the frame must be the same bytes as the
+// one computed pixel by pixel. The panel has all three kinds of pixel: bare tissue, a flat film
+// (level, but raised), and the slopes of a cap; the light has every term on.
+TEST(FixedLight, ChangesNoByteOfTheFrame) {
+  const Compositor c;
+  OpticsParams optics;
+  optics.falloff = true;
+  optics.sheen = 0.05;
+  optics.specular = 0.6;
+  optics.camera_x_mm = 0.7;
+  optics.camera_height_mm = 15.0;
+  Panel computed(160, 120, 0.05, 170), fixed(160, 120, 0.05, 170);
+  int bare = 0;
+  for (Panel* p : {&computed, &fixed})
+    for (int j = 0; j < 120; ++j)
+      for (int i = 0; i < 160; ++i) {
+        const double x = (i + 0.5) * 0.05, y = (j + 0.5) * 0.05, rho2 = (x - 5.5) * (x - 5.5) + (y - 3.0) * (y - 3.0);
+        float& h = p->film[std::size_t(j) * 160 + i];
+        if (x < 2.0) h = 0.1f;                                            // a flat film
+        else if (rho2 < 1.0) h = float(0.3 * (1.0 - rho2));               // a cap
+        else bare += p == &computed;                                      // bare tissue
+      }
+  ASSERT_GT(bare, 1000);
+  Scene scene;
+  scene.domain = fixed.domain;
+  scene.optics = optics;
+  std::vector<float> light(std::size_t(160) * 120 * kFixedLightChannels);
+  const FixedLightPixel make{headlight(optics, scene.domain), scene.domain.grid(), light.data()};
+  for (int j = 0; j < 120; ++j)
+    for (int i = 0; i < 160; ++i) make(i, j);
+  computed.draw(c, optics);
+  fixed.draw(c, optics, light.data());
+  EXPECT_EQ(fixed.frame, computed.frame);
+  // Not trivially: the frame shows the falloff and a highlight on the cap.
+  EXPECT_NE(computed.at(10, 60), computed.at(80, 60));
+  EXPECT_GT(*std::max_element(computed.frame.begin(), computed.frame.end()), computed.at(159, 119));
 }
 
 }  // namespace
