@@ -142,6 +142,10 @@ BLEEDSIM_HD inline std::uint64_t share_of(std::uint64_t blood, std::uint64_t wei
   return quotient;
 }
 
+// A footprint of up to this many pixels keeps its weights from the first sweep for the second (a
+// weight is at most 2²³ units: 32 bits hold it); a larger one computes them again, the same.
+constexpr int kKeptWeights = 32;
+
 // Calls deposit(pixel, units) for each pixel that receives a share of the particle in `slot`: one
 // sweep sums its footprint's weights, a second hands out the blood in proportion.
 template <class Deposit>
@@ -153,17 +157,30 @@ BLEEDSIM_HD inline void splat_particle(const SplatArgs& a, int slot, Deposit dep
   const float x = a.position[2 * slot], y = a.position[2 * slot + 1];
   const SplatFootprint f = splat_footprint(a.splat, a.grid, x, y, a.surface);
   const bool on_mesh = curved(a.surface);
+  const bool keep = (f.i1 - f.i0 + 1) * (f.j1 - f.j0 + 1) <= kKeptWeights;  // also when empty
+  std::uint32_t kept[kKeptWeights];
+  int visited = 0;
   std::uint64_t total = 0;
-  for_each_weight(a.splat, a.grid, f, on_mesh, [&](std::size_t, std::uint64_t w) { total += w; });
+  for_each_weight(a.splat, a.grid, f, on_mesh, [&](std::size_t, std::uint64_t w) {
+    total += w;
+    if (keep) kept[visited++] = std::uint32_t(w);
+  });
   if (total == 0) {
     deposit(pixel_containing(a.grid, x, y), blood);
     return;
   }
   const ShareDivisor divisor = share_divisor(total);
-  for_each_weight(a.splat, a.grid, f, on_mesh, [&](std::size_t pixel, std::uint64_t w) {
+  const auto hand_out = [&](std::size_t pixel, std::uint64_t w) {
     const std::uint64_t units = share_of(blood, w, divisor);
     if (units != 0) deposit(pixel, units);
-  });
+  };
+  if (!keep) {
+    for_each_weight(a.splat, a.grid, f, on_mesh, hand_out);
+    return;
+  }
+  visited = 0;
+  for (int j = f.j0; j <= f.j1; ++j)
+    for (int i = f.i0; i <= f.i1; ++i) hand_out(std::size_t(j) * std::size_t(a.grid.width) + std::size_t(i), kept[visited++]);
 }
 
 BLEEDSIM_HD inline float thickness_from_units(std::uint64_t units) { return float(units) * kSplatUnitMm; }
