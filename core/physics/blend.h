@@ -78,9 +78,7 @@ struct BlendPixel {
 
   // The film's slope at (i, j): central differences, the edge pixel standing in for one off the panel.
   BLEEDSIM_HD float film_at(int i, int j) const {
-    i = i < 0 ? 0 : (i >= grid.width ? grid.width - 1 : i);
-    j = j < 0 ? 0 : (j >= grid.height ? grid.height - 1 : j);
-    return film_mm[std::size_t(j) * grid.width + i];
+    return film_mm[std::size_t(clamp_index(j, grid.height)) * grid.width + clamp_index(i, grid.width)];
   }
 
   BLEEDSIM_HD void operator()(int i, int j) const {

@@ -10,6 +10,7 @@
 #include <cstddef>
 
 #include "core/physics/hd.h"
+#include "core/physics/pixel_grid.h"
 
 namespace bleedsim {
 
@@ -28,7 +29,6 @@ struct BlurArgs {
   float* blurred;       // width × height: the result
 };
 
-BLEEDSIM_HD inline int clamp_index(int v, int size) { return v < 0 ? 0 : (v >= size ? size - 1 : v); }
 
 // Downsample: the mean of the factor × factor block (the part of it inside the panel, at an edge).
 BLEEDSIM_HD inline float block_mean(const BlurArgs& a, int i, int j) {

@@ -28,9 +28,10 @@ BLEEDSIM_HD inline float transmitted(const float* table, float optical_depth) {
 // encoding rounds to the nearest byte by counting the byte boundaries a value reaches: boundary k
 // is the linear value of the code (k + ½)/255, so the byte of v is the number of boundaries ≤ v.
 // A table of the count at the start of each of kSrgbBuckets equal steps of [0, 1) gives a start no
-// higher than the answer (v ≥ its step's start, exactly: v · 4096 and its floor are exact), and a
-// walk of comparisons up the boundaries finishes it: at most one or two, since no step holds more
-// than one boundary. encode(decode(b)) = b for every byte.
+// higher than the answer (v ≥ its step's start, exactly: v · 4096 and its floor are exact), and
+// one comparison with the next boundary finishes it: no step holds more than one boundary (the
+// next step's count is at most one more, Srgb.EncodesToTheNearestByte), and v lies below the next
+// step's start, so the answer is the start's count or one more. encode(decode(b)) = b for every byte.
 constexpr int kSrgbBytes = 256;
 constexpr int kSrgbBuckets = 4096;
 struct SrgbTables {
@@ -44,9 +45,8 @@ BLEEDSIM_HD inline float linear_from_srgb(const SrgbTables& t, std::uint8_t byte
 BLEEDSIM_HD inline std::uint8_t srgb_from_linear(const SrgbTables& t, float v) {
   if (!(v > 0.0f)) return 0;  // also not a number
   if (v >= 1.0f) return kSrgbBytes - 1;
-  int byte = int(t.bucket_start[int(v * float(kSrgbBuckets))]);
-  while (byte < kSrgbBytes - 1 && v >= t.boundaries[byte]) ++byte;
-  return std::uint8_t(byte);
+  const int byte = int(t.bucket_start[int(v * float(kSrgbBuckets))]);
+  return std::uint8_t(byte < kSrgbBytes - 1 && v >= t.boundaries[byte] ? byte + 1 : byte);
 }
 
 // An integer power by repeated squaring: the same multiplications, in the same order, everywhere.

@@ -22,6 +22,13 @@ BLEEDSIM_HD inline float pixel_centre_y_mm(const PixelGrid& g, int j) {
   return (static_cast<float>(j) + 0.5f) * g.mm_per_px_y;
 }
 
+// An index clamped to [0, size): a tap or neighbour past the edge reads the edge. A minimum and a
+// maximum, which the GPU does in an instruction each (a nested choice became branches there).
+BLEEDSIM_HD inline int clamp_index(int v, int size) {
+  const int below_end = v < size - 1 ? v : size - 1;
+  return below_end > 0 ? below_end : 0;
+}
+
 // The pixel holding (x, y), clamped to the panel (before the conversion: float→int of out-of-range
 // values differs between CPU and GPU).
 BLEEDSIM_HD inline std::size_t pixel_containing(const PixelGrid& g, float x, float y) {

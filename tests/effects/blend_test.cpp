@@ -70,6 +70,21 @@ TEST(Srgb, EncodesToTheNearestByte) {
       EXPECT_LE(c.srgb.bucket_start[k] - c.srgb.bucket_start[k - 1], 1.0f) << k;
     }
   }
+  // And the last step, up to 1: at most one boundary above its start.
+  EXPECT_LE(255.0f - c.srgb.bucket_start[kSrgbBuckets - 1], 1.0f);
+}
+
+// The byte of v is the number of boundaries ≤ v, for every v: a dense sweep of [0, 1) (2²² values,
+// each bucket's start and its neighbours among them) against a binary search of the boundaries.
+TEST(Srgb, EncodesEveryValueAsTheBoundariesItReaches) {
+  const Compositor c;
+  const int steps = 1 << 22;
+  for (int k = 0; k < steps; ++k) {
+    for (const float v : {float(k) / float(steps), std::nextafter(float(k) / float(steps), 0.0f)}) {
+      const int expected = int(std::upper_bound(c.boundaries, c.boundaries + 255, v) - c.boundaries);
+      ASSERT_EQ(srgb_from_linear(c.srgb, v), expected) << v;
+    }
+  }
 }
 
 TEST(Srgb, EncodesBoundariesToTheByteAbove) {
