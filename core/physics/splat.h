@@ -157,7 +157,8 @@ BLEEDSIM_HD inline void splat_particle(const SplatArgs& a, int slot, Deposit dep
   const float x = a.position[2 * slot], y = a.position[2 * slot + 1];
   const SplatFootprint f = splat_footprint(a.splat, a.grid, x, y, a.surface);
   const bool on_mesh = curved(a.surface);
-  const bool keep = (f.i1 - f.i0 + 1) * (f.j1 - f.j0 + 1) <= kKeptWeights;  // also when empty
+  // In 64 bits: a panel may be 65,535 pixels a side. Also true when the footprint is empty.
+  const bool keep = std::int64_t(f.i1 - f.i0 + 1) * std::int64_t(f.j1 - f.j0 + 1) <= kKeptWeights;
   std::uint32_t kept[kKeptWeights];
   int visited = 0;
   std::uint64_t total = 0;
