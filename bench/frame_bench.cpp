@@ -2,8 +2,9 @@
 // splat, each pass of the blur (downsample, horizontal, vertical, upsample) and the four together,
 // the blend, and the whole frame (spread + splat + the four blur passes + blend); and the endoscope's
 // view: the trail, the blend lit by the headlight with highlights over the residue too, and the whole
-// lit frame (the frame's stages + trail + the lit blend); the trail also where the suction swept the
-// panel (a stylus's path over one frame, a segment a haptic tick). On CUDA at 1920×1080 and
+// lit frame (the frame's stages, then the trail and the lit blend in one pass, as the stages run
+// them); the trail also where the suction swept the panel (a stylus's path over one frame, a
+// segment a haptic tick). On CUDA at 1920×1080 and
 // 3840×2160 with 1,048,576 particles; on the CPU reference at 1920×1080 with 65,536.
 //
 // The particles are input only (no physics runs): N particles of the default 0.2 mm diameter on a
@@ -269,12 +270,12 @@ struct FrameScene {
     blend();
   }
   void trail() { backend->run("trail", trail_work); }
+  // The trail in the lit blend's pass, as the blend stage runs it.
   void frame_lit() {
     spread();
     splat();
     blur();
-    trail();
-    backend->run("blend", lit_blend_work);
+    backend->run_shared({"trail", "blend"}, pair_pixels(trail_work, lit_blend_work));
   }
   void run(Work work) {
     switch (work) {

@@ -107,6 +107,10 @@ MemoryParts BlendStage::memory_for(const Scene& scene) {
           {"scene.width_px", "the blend's optical tables", Count(kOpticsTableFloats * sizeof(float))}};
 }
 
-void BlendStage::run(const Scene&, State&, Backend& backend) { launch(backend, work_); }
+void BlendStage::run(const Scene&, State& state, Backend& backend) {
+  if (!state.trail_pass) return launch(backend, work_);
+  backend.run_shared({"trail", name()}, pair_pixels(*state.trail_pass, work_));
+  state.trail_pass.reset();
+}
 
 }  // namespace bleedsim

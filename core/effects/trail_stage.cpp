@@ -53,7 +53,8 @@ void TrailStage::run(const Scene& scene, State& state, Backend& backend) {
     if (bytes > 0) backend.upload(sweep_.data(), sweep.data(), bytes);
     sweep_trail(work_, sweep_.as<const float>(), sweep, int(sweep.size() / 4), scene.suction->radius_mm);
   }
-  launch(backend, work_);
+  // Run by the blend, in its pass: it reads the residue at its own pixel only, after this.
+  state.trail_pass = work_;
 }
 
 }  // namespace bleedsim

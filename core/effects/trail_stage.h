@@ -9,7 +9,8 @@ namespace bleedsim {
 
 // (splat/thickness, the suction's path) => trail/residue
 // Each frame, in scenes with [trail]: the residue of the blood that ran over each pixel, drying,
-// and none where the suction passed.
+// and none where the suction passed. The stage readies the frame's pass (the suction's path) and
+// leaves it in State for the blend, which runs it in its own pass over the pixels (TrailThenBlend).
 class TrailStage final : public Stage {
  public:
   TrailStage(const StageKind& kind, const Scene& scene, State& state, Backend& backend);

@@ -30,14 +30,21 @@ struct BlurArgs {
 };
 
 
+// 1 / factor, exactly: the factor is 1, 2 or 4, so multiplying by this scales by a power of two,
+// which rounds the same real number as dividing by the factor does, to the bit, and spares the
+// pixel a division, a long sequence on the GPU.
+BLEEDSIM_HD inline float inverse_factor(int factor) { return factor == 4 ? 0.25f : factor == 2 ? 0.5f : 1.0f; }
+
 // Downsample: the mean of the factor × factor block (the part of it inside the panel, at an edge).
+// A whole block counts factor² pixels, a power of two: its exact inverse, as inverse_factor.
 BLEEDSIM_HD inline float block_mean(const BlurArgs& a, int i, int j) {
   float sum = 0.0f;
   int count = 0;
   for (int y = j * a.factor; y < (j + 1) * a.factor && y < a.height; ++y)
     for (int x = i * a.factor; x < (i + 1) * a.factor && x < a.width; ++x, ++count)
       sum += a.film[std::size_t(y) * a.width + x];
-  return sum / float(count);
+  const float inverse = inverse_factor(a.factor);
+  return count == a.factor * a.factor ? sum * (inverse * inverse) : sum / float(count);
 }
 
 // One pass of the separable Gaussian at (i, j): along the row, or down the column.
@@ -50,11 +57,6 @@ BLEEDSIM_HD inline float gaussian_tap_sum(const BlurArgs& a, const float* in, in
   }
   return sum;
 }
-
-// 1 / factor, exactly: the factor is 1, 2 or 4, so multiplying by this scales by a power of two just
-// as dividing by the factor does, to the bit (the values scaled are far from the subnormals), and
-// spares each pixel two divisions, long sequences on the GPU.
-BLEEDSIM_HD inline float inverse_factor(int factor) { return factor == 4 ? 0.25f : factor == 2 ? 0.5f : 1.0f; }
 
 // Upsample: bilinear between the four nearest downsampled pixel centres (clamped at the edges).
 BLEEDSIM_HD inline float bilinear_up(const BlurArgs& a, int i, int j) {

@@ -172,6 +172,7 @@ BLEEDSIM_HD inline void splat_particle(const SplatArgs& a, int slot, Deposit dep
   }
   const ShareDivisor divisor = share_divisor(total);
   const auto hand_out = [&](std::size_t pixel, std::uint64_t w) {
+    if (w == 0) return;  // share_of(blood, 0, ·) is 0: a footprint's corners outside R cost nothing
     const std::uint64_t units = share_of(blood, w, divisor);
     if (units != 0) deposit(pixel, units);
   };

@@ -8,6 +8,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "core/runtime/buffer.h"
 
@@ -44,13 +45,13 @@ class Backend {
   template <class... A>
   void run(const std::string& stage, const A&... a) {
     ++launches_[stage];
-#if BLEEDSIM_HAVE_CUDA
-    if (kind() == BackendKind::cuda) {
-      cuda_twin(a...);
-      return;
-    }
-#endif
-    cpu_twin(a..., cpu_threads_);
+    dispatch(a...);
+  }
+  // The same for work that several stages share in one pass (pair_pixels), counted under each.
+  template <class... A>
+  void run_shared(const std::vector<std::string>& stages, const A&... a) {
+    for (const std::string& stage : stages) ++launches_[stage];
+    dispatch(a...);
   }
   // Temporary storage the particle bin needs here (none on the CPU; on the GPU its counts and places).
   virtual std::size_t particle_sort_scratch_bytes(int capacity, std::uint32_t cells) const = 0;
@@ -67,6 +68,17 @@ class Backend {
   const int cpu_threads_;
 
  private:
+  template <class... A>
+  void dispatch(const A&... a) {
+#if BLEEDSIM_HAVE_CUDA
+    if (kind() == BackendKind::cuda) {
+      cuda_twin(a...);
+      return;
+    }
+#endif
+    cpu_twin(a..., cpu_threads_);
+  }
+
   std::map<std::string, std::uint64_t> launches_;
   // Shared with the buffers' release, so a buffer that outlives accounting cannot write freed memory.
   std::shared_ptr<std::size_t> bytes_in_use_ = std::make_shared<std::size_t>(0);

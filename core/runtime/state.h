@@ -4,9 +4,11 @@
 #include <cstddef>
 #include <cstdint>
 #include <deque>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "core/physics/trail.h"
 #include "core/runtime/buffer.h"
 #include "core/runtime/scene.h"
 #include "core/runtime/tool.h"
@@ -47,6 +49,9 @@ struct State {
   // the last one of the frames before it: its tip between them is the instrument's.
   std::vector<ToolSample> stylus;
   std::deque<Field> fields;      // deque: a Field's address never moves once added
+  // The trail's pass for the frame being computed, which the blend runs in its own pass over the
+  // same pixels (TrailThenBlend): set by the trail stage, taken by the blend stage.
+  std::optional<TrailPixel> trail_pass;
 
   Field* find(const std::string& name);
   const Field* find(const std::string& name) const;

@@ -5,7 +5,9 @@
 #include <cmath>
 #include <vector>
 
+#include "core/effects/blend_stage.h"
 #include "core/effects/trail_stage.h"
+#include "core/physics/pixel_kernels.h"
 #include "core/runtime/simulation.h"
 #include "core/runtime/tissue.h"
 #include "tests/runtime/field_values.h"
@@ -88,6 +90,65 @@ TEST(TrailStage, WhereADropHasRunTheResidueDries) {
     const double closed = residue[last_covered] * std::exp(-n / (scene.frame_rate_hz * scene.trail->drying_s));
     EXPECT_NEAR(residue[k], closed, n * std::ldexp(closed, -23)) << k;
   }
+}
+
+// The blend stage runs the trail in its own pass (TrailThenBlend): pixel by pixel, the trail and
+// then the blend. It must leave the residue and the frame as the two passes one after the other
+// do, to the byte: the blend reads the residue only at its own pixel. The panel has bare tissue,
+// film over old residue and over none, a stain, and the suction's path through it, lit.
+TEST(TrailThenBlend, GivesTheBytesOfTheTrailsPassThenTheBlends) {
+  const int w = 48, h = 32;
+  const std::size_t n = std::size_t(w) * h;
+  Scene scene;
+  scene.domain = Domain{w, h, 4.8, 3.2};
+  scene.optics = OpticsParams{};
+  scene.optics->falloff = true;
+  scene.trail = TrailParams{};
+  const Image tissue = procedural_tissue(w, h, 5);
+  const std::vector<float> tables = optics_tables();
+  std::vector<float> film(n), stain(n), residue(n);
+  for (std::size_t p = 0; p < n; ++p) {
+    const int i = int(p % w), j = int(p / w);
+    film[p] = i > 8 && i < 30 ? 0.004f * float((i * 7 + j * 3) % 11) : 0.0f;
+    stain[p] = j > 20 ? 0.3f : 0.0f;
+    residue[p] = (i + j) % 3 == 0 ? 0.002f * float(j % 5) : 0.0f;
+  }
+  const std::vector<float> path{0.5f, 1.0f, 2.5f, 1.6f};  // one segment of the suction's path, mm
+  struct Result {
+    std::vector<float> residue;
+    std::vector<std::uint8_t> frame;
+  } apart{residue, std::vector<std::uint8_t>(4 * n)}, together = apart;
+  for (Result* r : {&apart, &together}) {
+    TrailPixel trail{film.data(), r->residue.data(), float(scene.trail->residue),
+                     trail_decay_per_frame(*scene.trail, scene.frame_rate_hz), scene.domain.grid()};
+    sweep_trail(trail, path.data(), path, 1, 0.4);
+    const BlendPixel blend = blend_work(scene, tables.data(), tissue.rgba.data(), stain.data(), film.data(),
+                                        r->residue.data(), r->frame.data());
+    if (r == &apart) {
+      for (int j = 0; j < h; ++j)
+        for (int i = 0; i < w; ++i) trail(i, j);
+      for (int j = 0; j < h; ++j)
+        for (int i = 0; i < w; ++i) blend(i, j);
+    } else {
+      const TrailThenBlend pass = pair_pixels(trail, blend);
+      for (int j = 0; j < h; ++j)
+        for (int i = 0; i < w; ++i) pass(i, j);
+    }
+  }
+  EXPECT_EQ(together.residue, apart.residue);
+  EXPECT_EQ(together.frame, apart.frame);
+  // Not trivially: the trail changed residues (wetted, dried and sucked dry), and they show.
+  EXPECT_NE(apart.residue, residue);
+  EXPECT_EQ(apart.residue[std::size_t(13) * w + 15], 0.0f);  // (1.55, 1.35) mm: on the path
+  EXPECT_GT(apart.residue[std::size_t(25) * w + 20], 0.0f);
+}
+
+TEST(TrailThenBlend, RefusesPassesOverDifferentPixels) {
+  float film = 0.0f, residue = 0.0f;
+  const TrailPixel trail{&film, &residue, 0.5f, 0.9f, PixelGrid{1, 1}};
+  BlendPixel blend{};
+  blend.grid = PixelGrid{2, 1};
+  EXPECT_THROW(pair_pixels(trail, blend), std::logic_error);
 }
 
 // Only a scene with [trail] runs the trail stage and holds its field.
