@@ -41,6 +41,7 @@
 #include "core/effects/particle_model.h"
 #include "core/runtime/scene.h"
 #include "core/effects/splat_stage.h"
+#include "core/effects/spread_tiles.h"
 #include "core/haptics/haptic_params.h"
 #include "core/runtime/tissue.h"
 
@@ -197,10 +198,12 @@ struct FrameScene {
     std::vector<SpreadCut> host_cuts;
     for (int c = 0; c < kCutCount; ++c)
       host_cuts.push_back({w_mm * (0.15f + 0.1f * c), h_mm * (c % 2 ? 0.4f : 0.6f), 0.15f * h_mm, 0.5f});
-    cuts = backend->allocate(host_cuts.size() * sizeof(SpreadCut));
-    backend->upload(cuts.data(), host_cuts.data(), cuts.bytes());
+    SpreadUpload upload;  // the cuts and their tile table, as the spread stage uploads them
+    upload.lay_out(host_cuts, 0, grid, spread_reach_per_mm(scene));
+    cuts = backend->allocate(upload.bytes().size());
+    backend->upload(cuts.data(), upload.bytes().data(), cuts.bytes());
     stain = backend->allocate(pixels * sizeof(float));
-    spread_work = {cuts.as<const SpreadCut>(), kCutCount, grid, stain.as<float>()};
+    spread_work = upload.pixel_work(cuts.data(), stain.as<float>());
 
     // The blend, as BlendStage runs it in a scene with a blurred film: stain and blur/thickness
     // over the procedural tissue, in linear light; lit, in a scene with [optics] and [trail], also

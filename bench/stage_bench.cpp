@@ -11,6 +11,7 @@
 
 #include "bench/bench_util.h"
 #include "core/effects/blend_stage.h"
+#include "core/effects/spread_tiles.h"
 #include "core/physics/pixel_kernels.h"
 #include "core/runtime/backend.h"
 #include "core/runtime/tissue.h"
@@ -25,6 +26,7 @@ struct Size {
   int width, height;
 };
 const Size kSizes[] = {{"256x256", 256, 256}, {"1920x1080", 1920, 1080}, {"3840x2160", 3840, 2160}};
+constexpr int kCutCount = 8;
 
 // A steady scene: eight half-grown stains over a 0.05 mm/px panel, overlapping in pairs.
 struct StageScene {
@@ -32,28 +34,32 @@ struct StageScene {
   PixelGrid grid;
   Scene scene;  // the panel, for the blend: unlit, the stain alone over the tissue
   Buffer cuts, stain, tissue, frame, tables;
-  int cut_count = 8;
+  SpreadPixel spread_work{};
 
   StageScene(std::unique_ptr<Backend> b, const Size& size) : backend(std::move(b)) {
     grid = PixelGrid{size.width, size.height, 0.05f, 0.05f};
     const std::size_t pixels = std::size_t(size.width) * size.height;
     std::vector<SpreadCut> host_cuts;
     const float w_mm = size.width * 0.05f, h_mm = size.height * 0.05f;
-    for (int c = 0; c < cut_count; ++c)
+    scene.domain = Domain{size.width, size.height, w_mm, h_mm};
+    for (int c = 0; c < kCutCount; ++c)
       host_cuts.push_back({w_mm * (0.15f + 0.1f * c), h_mm * (c % 2 ? 0.4f : 0.6f), 0.15f * h_mm, 0.5f});
-    cuts = backend->allocate(host_cuts.size() * sizeof(SpreadCut));
-    backend->upload(cuts.data(), host_cuts.data(), cuts.bytes());
+    // The cuts and their tile table, as the spread stage uploads them.
+    SpreadUpload upload;
+    upload.lay_out(host_cuts, 0, grid, spread_reach_per_mm(scene));
+    cuts = backend->allocate(upload.bytes().size());
+    backend->upload(cuts.data(), upload.bytes().data(), cuts.bytes());
     stain = backend->allocate(pixels * sizeof(float));
+    spread_work = upload.pixel_work(cuts.data(), stain.as<float>());
     frame = backend->allocate(pixels * 4);
     tissue = backend->allocate(pixels * 4);
     const Image texture = procedural_tissue(size.width, size.height, 1);
     backend->upload(tissue.data(), texture.rgba.data(), tissue.bytes());
-    scene.domain = Domain{size.width, size.height, w_mm, h_mm};
     const std::vector<float> host_tables = optics_tables();
     tables = backend->allocate(host_tables.size() * sizeof(float));
     backend->upload(tables.data(), host_tables.data(), tables.bytes());
   }
-  void spread() { backend->run("spread", SpreadPixel{cuts.as<const SpreadCut>(), cut_count, grid, stain.as<float>()}); }
+  void spread() { backend->run("spread", spread_work); }
   void blend() {
     backend->run("blend", blend_work(scene, tables.as<const float>(), tissue.as<const std::uint8_t>(),
                                      stain.as<const float>(), nullptr, nullptr, frame.as<std::uint8_t>()));

@@ -9,6 +9,12 @@
 // On a tissue mesh the distance is the surface's, through the pixel's frame (core/physics/surface.h).
 // Several stains combine as independent absorbers: the light left after all of them is the
 // product of what each lets through, stain = 1 − Π(1 − sᵢ), taken in cut order.
+//
+// A frame's pixels multiply in only the cuts near them: the panel is cut into square tiles, and a
+// pixel walks the list of its tile, the cuts whose stain may reach some pixel of it (SpreadTiles).
+// Skipping a cut is exact: its stain at the pixel is exactly 0, and light · (1 − 0) is light to the
+// bit; the lists keep the cuts' order. So the bytes are those of the product over every cut, and a
+// pixel's cost follows the cuts that overlap it, not how many are live.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -50,15 +56,59 @@ BLEEDSIM_HD inline float cut_stain(const SpreadCut& cut, float x_mm, float y_mm,
   return stain_profile(sqrtf(dx * dx + dy * dy), cut.radius_mm) * cut.amplitude;
 }
 
+// Pixel (i, j) as the spread measures from it: its centre (panel mm) and, on a mesh, its frame.
+struct StainedPixel {
+  float x_mm, y_mm;
+  SurfaceFrame frame;
+  bool on_mesh;
+};
+
+BLEEDSIM_HD inline StainedPixel stained_pixel(const PixelGrid& grid, int i, int j, const SurfaceMap& surface) {
+  return {pixel_centre_x_mm(grid, i), pixel_centre_y_mm(grid, j),
+          curved(surface) ? frame_of(surface, std::size_t(j) * grid.width + i) : SurfaceFrame{}, curved(surface)};
+}
+
+// The light one cut lets through at that pixel.
+BLEEDSIM_HD inline float light_past(const SpreadCut& cut, const StainedPixel& p) {
+  return 1.0f - cut_stain(cut, p.x_mm, p.y_mm, p.on_mesh ? &p.frame : nullptr);
+}
+
 // The light left at pixel (i, j) after `light_left` (from the cuts before these) and then each of
 // these cuts' stains in order: light_left · Π(1 − sᵢ), one product at a time.
 BLEEDSIM_HD inline float light_through(const SpreadCut* cuts, int cut_count, const PixelGrid& grid, int i, int j,
                                        const SurfaceMap& surface, float light_left) {
-  const float x = pixel_centre_x_mm(grid, i);
-  const float y = pixel_centre_y_mm(grid, j);
-  const SurfaceFrame frame = curved(surface) ? frame_of(surface, std::size_t(j) * grid.width + i) : SurfaceFrame{};
-  const SurfaceFrame* on = curved(surface) ? &frame : nullptr;
-  for (int c = 0; c < cut_count; ++c) light_left *= 1.0f - cut_stain(cuts[c], x, y, on);
+  const StainedPixel p = stained_pixel(grid, i, j, surface);
+  for (int c = 0; c < cut_count; ++c) light_left *= light_past(cuts[c], p);
+  return light_left;
+}
+
+// The spread's tiles: squares of kSpreadTilePx pixels from the panel's top-left corner, those of the
+// last column and row cut short by its edge. 32: a GPU warp (32 neighbouring pixels of one row, in
+// blocks of 32 × 8, kernels/pixel_kernels.cu) lies in one tile, so its threads walk one list together.
+constexpr int kSpreadTilePx = 32;
+
+// A frame's tile table, in compressed rows: tile t lists cut[first[t]] … cut[first[t + 1] − 1],
+// indices into the frame's cuts in ascending order (the list's), of every cut whose stain may reach
+// a pixel of t. Built on the host with a margin far beyond float rounding (core/effects/spread_tiles.h),
+// so a cut left out of a tile's list stains none of its pixels.
+struct SpreadTiles {
+  const int* first;  // tiles + 1 offsets into cut
+  const int* cut;    // first[tiles] indices into the cuts
+  int across;        // tiles per row: ⌈width / kSpreadTilePx⌉
+};
+
+BLEEDSIM_HD inline int tile_of(const SpreadTiles& tiles, int i, int j) {
+  return (j / kSpreadTilePx) * tiles.across + i / kSpreadTilePx;
+}
+
+// As light_through over every cut, multiplying in only those listed for the pixel's tile: the
+// others would each multiply by exactly 1 − 0.
+BLEEDSIM_HD inline float light_through(const SpreadCut* cuts, const SpreadTiles& tiles, const PixelGrid& grid, int i,
+                                       int j, const SurfaceMap& surface, float light_left) {
+  const StainedPixel p = stained_pixel(grid, i, j, surface);
+  const int t = tile_of(tiles, i, j);
+  const int end = tiles.first[t + 1];
+  for (int k = tiles.first[t]; k < end; ++k) light_left *= light_past(cuts[tiles.cut[k]], p);
   return light_left;
 }
 
@@ -75,12 +125,13 @@ inline float cut_amplitude(double start_s, double growth_per_s, double t_s) {
   return static_cast<float>(std::clamp((t_s - start_s) * growth_per_s, 0.0, 1.0));
 }
 
-// The stage's work, pixel by pixel: the stain of one frame's cuts (core/physics/pixel_kernels.h runs it).
-// With `settled`, the light the cuts before these (whose stains no longer change) let through,
-// from SpreadSettle: the same products in the same order as from every cut, so the same bytes.
+// The stage's work, pixel by pixel: the stain of one frame's cuts (core/physics/pixel_kernels.h runs it),
+// each pixel through its tile's list. With `settled`, the light the cuts before these (whose stains
+// no longer change) let through, from SpreadSettle: the same products in the same order as from
+// every cut, so the same bytes. Built by SpreadUpload::pixel_work (core/effects/spread_tiles.h).
 struct SpreadPixel {
   const SpreadCut* cuts;
-  int cut_count;
+  SpreadTiles tiles;  // over these cuts
   PixelGrid grid;
   float* stain;  // grid.width × grid.height, row-major
   SurfaceMap surface = {};  // a tissue mesh's maps; empty on the flat panel
@@ -90,7 +141,7 @@ struct SpreadPixel {
   BLEEDSIM_HD int height() const { return grid.height; }
   BLEEDSIM_HD void operator()(int i, int j) const {
     const std::size_t p = std::size_t(j) * grid.width + i;
-    stain[p] = 1.0f - light_through(cuts, cut_count, grid, i, j, surface, settled ? settled[p] : 1.0f);
+    stain[p] = 1.0f - light_through(cuts, tiles, grid, i, j, surface, settled ? settled[p] : 1.0f);
   }
 };
 

@@ -11,16 +11,12 @@
 #include <cstdint>
 #include <cstring>
 #include <iostream>
-#include <memory>
 #include <vector>
 
-#include "core/effects/surface_stage.h"
-#include "core/io/mesh_obj.h"
-#include "core/mesh/surface_bake.h"
 #include "core/physics/spread.h"
 #include "core/runtime/simulation.h"
+#include "tests/effects/turbinate_scene.h"
 #include "tests/runtime/scenes_in_code.h"
-#include "tests/test_paths.h"
 
 namespace bleedsim {
 namespace {
@@ -81,11 +77,7 @@ TEST(SpreadSettle, EveryFrameIsTheProductOverEveryCutOnThePanel) {
 
 TEST(SpreadSettle, EveryFrameIsTheProductOverEveryCutOnTheTurbinate) {
   Scene scene = test::scene_in_code(true);
-  scene.domain = Domain{160, 64, 40.0, 16.0};
-  scene.tissue = procedural_tissue(160, 64, 5);
-  TissueMesh mesh = load_tissue_mesh(test::source_dir() + "/scenarios/meshes/turbinate.obj");
-  const SurfaceMaps maps = bake_surface_maps(mesh, texture_panel(scene.domain), scene.device_gravity_mm_s2());
-  scene.mesh = std::make_shared<const MeshSurface>(std::move(mesh));
+  const SurfaceMaps maps = test::lay_on_turbinate(scene, Domain{160, 64, 40.0, 16.0});
   add_stroke(scene);
   expect_every_cut_in_every_frame(scene, SurfaceMap{maps.frame.data(), maps.gravity.data(), scene.domain.grid()});
 }
