@@ -56,30 +56,23 @@ BLEEDSIM_HD inline float cut_stain(const SpreadCut& cut, float x_mm, float y_mm,
   return stain_profile(sqrtf(dx * dx + dy * dy), cut.radius_mm) * cut.amplitude;
 }
 
-// Pixel (i, j) as the spread measures from it: its centre (panel mm) and, on a mesh, its frame.
-struct StainedPixel {
-  float x_mm, y_mm;
-  SurfaceFrame frame;
-  bool on_mesh;
-};
-
-BLEEDSIM_HD inline StainedPixel stained_pixel(const PixelGrid& grid, int i, int j, const SurfaceMap& surface) {
-  return {pixel_centre_x_mm(grid, i), pixel_centre_y_mm(grid, j),
-          curved(surface) ? frame_of(surface, std::size_t(j) * grid.width + i) : SurfaceFrame{}, curved(surface)};
-}
-
-// The light one cut lets through at that pixel.
-BLEEDSIM_HD inline float light_past(const SpreadCut& cut, const StainedPixel& p) {
-  return 1.0f - cut_stain(cut, p.x_mm, p.y_mm, p.on_mesh ? &p.frame : nullptr);
-}
-
 // The light left at pixel (i, j) after `light_left` (from the cuts before these) and then each of
-// these cuts' stains in order: light_left · Π(1 − sᵢ), one product at a time.
+// the cuts cut_at(0), …, cut_at(count − 1) in order: light_left · Π(1 − sᵢ), one product at a time.
+template <class CutAt>
+BLEEDSIM_HD inline float light_through_each(int count, const CutAt& cut_at, const PixelGrid& grid, int i, int j,
+                                            const SurfaceMap& surface, float light_left) {
+  const float x = pixel_centre_x_mm(grid, i);
+  const float y = pixel_centre_y_mm(grid, j);
+  const SurfaceFrame frame = curved(surface) ? frame_of(surface, std::size_t(j) * grid.width + i) : SurfaceFrame{};
+  const SurfaceFrame* on = curved(surface) ? &frame : nullptr;
+  for (int c = 0; c < count; ++c) light_left *= 1.0f - cut_stain(cut_at(c), x, y, on);
+  return light_left;
+}
+
+// The same over cuts[0 … cut_count − 1].
 BLEEDSIM_HD inline float light_through(const SpreadCut* cuts, int cut_count, const PixelGrid& grid, int i, int j,
                                        const SurfaceMap& surface, float light_left) {
-  const StainedPixel p = stained_pixel(grid, i, j, surface);
-  for (int c = 0; c < cut_count; ++c) light_left *= light_past(cuts[c], p);
-  return light_left;
+  return light_through_each(cut_count, [&](int c) { return cuts[c]; }, grid, i, j, surface, light_left);
 }
 
 // The spread's tiles: squares of kSpreadTilePx pixels from the panel's top-left corner, those of the
@@ -103,13 +96,13 @@ BLEEDSIM_HD inline int tile_of(const SpreadTiles& tiles, int i, int j) {
 
 // As light_through over every cut, multiplying in only those listed for the pixel's tile: the
 // others would each multiply by exactly 1 − 0.
+// A cut is read whole (a copy: one 16-byte load on the GPU) once its index is known.
 BLEEDSIM_HD inline float light_through(const SpreadCut* cuts, const SpreadTiles& tiles, const PixelGrid& grid, int i,
                                        int j, const SurfaceMap& surface, float light_left) {
-  const StainedPixel p = stained_pixel(grid, i, j, surface);
-  const int t = tile_of(tiles, i, j);
-  const int end = tiles.first[t + 1];
-  for (int k = tiles.first[t]; k < end; ++k) light_left *= light_past(cuts[tiles.cut[k]], p);
-  return light_left;
+  const int t = tile_of(tiles, i, j), first = tiles.first[t];
+  const int* listed = tiles.cut + first;
+  return light_through_each(tiles.first[t + 1] - first, [&](int k) { return cuts[listed[k]]; }, grid, i, j, surface,
+                            light_left);
 }
 
 // The combined stain of every cut at pixel (i, j).

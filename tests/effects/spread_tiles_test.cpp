@@ -75,11 +75,12 @@ void expect_tiles_exact(const std::vector<SpreadCut>& cuts, int live, const Pixe
       const float all = spread_stain(cuts.data() + live, live_count, grid, i, j, surface);
       ASSERT_EQ(std::memcmp(&got, &all, sizeof got), 0)
           << "pixel (" << i << ", " << j << "): " << got << " through its tile, " << all << " from every cut";
-      const StainedPixel p = stained_pixel(grid, i, j, surface);
+      const float x = pixel_centre_x_mm(grid, i), y = pixel_centre_y_mm(grid, j);
+      const SurfaceFrame frame = curved(surface) ? frame_of(surface, std::size_t(j) * grid.width + i) : SurfaceFrame{};
       const int t = tile_of(tiles, i, j);
       skipped += live_count - (tiles.first[t + 1] - tiles.first[t]);
       for (int c = 0; c < live_count; ++c) {
-        if (cut_stain(cuts[std::size_t(live + c)], p.x_mm, p.y_mm, p.on_mesh ? &p.frame : nullptr) == 0.0f) continue;
+        if (cut_stain(cuts[std::size_t(live + c)], x, y, curved(surface) ? &frame : nullptr) == 0.0f) continue;
         ++stained;
         ASSERT_TRUE(std::binary_search(tiles.cut + tiles.first[t], tiles.cut + tiles.first[t + 1], c))
             << "cut " << c << " stains pixel (" << i << ", " << j << ") but tile " << t << " does not list it";
