@@ -33,6 +33,22 @@ long long int_attribute(const fs::path& file, const char* name) {
   return value;
 }
 
+// A dataset's stored values as bytes; empty when the file has no such dataset.
+std::vector<char> dataset_bytes(const fs::path& file, const char* name) {
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  std::vector<char> bytes;
+  if (H5Lexists(f, name, H5P_DEFAULT) > 0) {
+    const hid_t d = H5Dopen(f, name, H5P_DEFAULT), type = H5Dget_type(d), space = H5Dget_space(d);
+    bytes.resize(std::size_t(H5Sget_simple_extent_npoints(space)) * H5Tget_size(type));
+    H5Dread(d, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, bytes.data());
+    H5Sclose(space);
+    H5Tclose(type);
+    H5Dclose(d);
+  }
+  H5Fclose(f);
+  return bytes;
+}
+
 TEST(Run, WritesHdf5AndPngsAndSaysWhere) {
   const fs::path out = scratch_folder() / "out";
   const CliResult result =
@@ -252,6 +268,30 @@ TEST(Backend, AutoSaysWhichBackendItTookAndWhy) {
   EXPECT_NE(result.output.find(cuda ? "on cuda" : "on cpu"), std::string::npos) << result.output;
   EXPECT_NE(result.output.find(cuda ? "auto: CUDA device found" : "auto: " + why_not), std::string::npos)
       << result.output;
+}
+
+// A run on CUDA writes the values the CPU run writes: every field of every frame, and the same PNGs
+// (the frames' hashes agree, gpu-check's parity; this is the files a user reads).
+TEST(Backend, ACudaRunWritesTheFieldsAndPngsOfTheCpuRun) {
+  std::string why_not;
+  if (!cuda_device_available(&why_not)) GTEST_SKIP() << "no CUDA device: " << why_not;
+  const fs::path dir = scratch_folder();
+  for (const char* backend : {"cpu", "cuda"}) {
+    const CliResult result = run_cli("run '" + scenario("golden/optics-trails.toml") + "' --backend " + backend +
+                                     " --png-every 7 -q --out '" + (dir / backend).string() + "'");
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+  }
+  int fields = 0;
+  for (const char* field : {"frame", "spread/stain", "splat/thickness", "blur/thickness", "trail/residue"}) {
+    const std::vector<char> cpu = dataset_bytes(dir / "cpu/frames.h5", field);
+    fields += !cpu.empty();
+    EXPECT_TRUE(cpu == dataset_bytes(dir / "cuda/frames.h5", field)) << field;
+  }
+  EXPECT_EQ(fields, 5);
+  EXPECT_EQ(files_in(dir / "cpu/png").size(), 14u);  // frames 0, 7, …, 84 and the last, 89
+  EXPECT_EQ(files_in(dir / "cpu/png"), files_in(dir / "cuda/png"));
+  for (const std::string& png : files_in(dir / "cpu/png"))
+    EXPECT_EQ(read_bytes(dir / "cpu/png" / png), read_bytes(dir / "cuda/png" / png)) << png;
 }
 
 TEST(Backend, AskingForCudaWithoutADeviceSaysWhy) {
