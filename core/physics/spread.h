@@ -95,8 +95,8 @@ BLEEDSIM_HD inline int tile_of(const SpreadTiles& tiles, int i, int j) {
 }
 
 // As light_through over every cut, multiplying in only those listed for the pixel's tile: the
-// others would each multiply by exactly 1 − 0.
-// A cut is read whole (a copy: one 16-byte load on the GPU) once its index is known.
+// others would each multiply by exactly 1 − 0. Each listed cut is read whole, as a copy: one 16-byte
+// load on the GPU (by reference it was three, and the pixel's frame went to local memory).
 BLEEDSIM_HD inline float light_through(const SpreadCut* cuts, const SpreadTiles& tiles, const PixelGrid& grid, int i,
                                        int j, const SurfaceMap& surface, float light_left) {
   const int t = tile_of(tiles, i, j), first = tiles.first[t];
