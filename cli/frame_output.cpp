@@ -46,10 +46,10 @@ void FrameOutput::encode(FrameJob& job, int task) const {
     out_.hdf5->filter(std::size_t(task), job.fields[std::size_t(task)].data(), job.chunks[std::size_t(task)]);
     return;
   }
-  const std::vector<std::uint8_t>& rgba = job.fields[0];
+  const std::uint8_t* rgba = job.fields[0].data();
   const bool png = png_due(job.frame);
   if (png && task == chunks) {
-    encode_png_rgba((out_.png_folder / png_name("frame", job.frame)).string(), out_.width, out_.height, rgba.data(),
+    encode_png_rgba((out_.png_folder / png_name("frame", job.frame)).string(), out_.width, out_.height, rgba,
                     job.png);
     return;
   }

@@ -22,7 +22,7 @@ struct FrameOutputs {
   long frames = 0;
   int width = 0, height = 0;  // the frame's, in pixels
   // Draws the view of a frame's RGBA, for a scene with a [view]: beside each PNG, and in its sheet.
-  std::function<Image(const std::vector<std::uint8_t>& rgba)> view;
+  std::function<Image(const std::uint8_t* rgba)> view;
   ContactSheet* sheet = nullptr;
   ContactSheet* view_sheet = nullptr;
 };

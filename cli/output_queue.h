@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "core/haptics/haptics.h"
+#include "core/runtime/download.h"
 #include "core/runtime/image.h"
 
 namespace bleedsim::cli {
@@ -27,7 +28,7 @@ namespace bleedsim::cli {
 struct FrameJob {
   long frame = 0;
   double time_s = 0.0;
-  std::vector<std::vector<std::uint8_t>> fields;
+  std::vector<HostBytes> fields;  // in the backend's host memory (Simulation::host_memory)
   std::vector<HapticTick> ticks;
   std::vector<std::vector<std::uint8_t>> chunks;  // each field's HDF5 chunk, filtered
   std::vector<unsigned char> png, view_png;       // the frame's and the view's PNG, when due

@@ -160,8 +160,10 @@ int run_command(const RunOptions& options) {
   if (out.contact_sheet > 0 && view)
     view_sheet = std::make_unique<ContactSheet>(frames, out.contact_sheet, view->width_px, view->height_px);
   // The mesh drawn with frame k's texture, from the scenario's endoscope.
-  const auto view_of = [&](const std::vector<std::uint8_t>& frame) {
-    return render_view(s.mesh->mesh(), Image{s.domain.width_px, s.domain.height_px, frame}, *view);
+  const auto view_of = [&](const std::uint8_t* frame) {
+    const std::size_t bytes = std::size_t(s.domain.width_px) * std::size_t(s.domain.height_px) * 4;
+    return render_view(s.mesh->mesh(),
+                       Image{s.domain.width_px, s.domain.height_px, std::vector<std::uint8_t>(frame, frame + bytes)}, *view);
   };
 
   if (!options.quiet)
@@ -205,29 +207,51 @@ int run_command(const RunOptions& options) {
     for (const FieldLayout& spec : specs) frame_bytes += spec.bytes();
     {
       OutputQueue output(workers, frames_in_flight(workers, frame_bytes), frame_output.work());
+      // A frame's fields go to the host while the next frame computes (on CUDA; the CPU copies at
+      // once): two downloads in turn, into the backend's host memory; a frame is queued for its files
+      // once its copies are whole, after the next frame has been computed.
+      const std::unique_ptr<Download> downloads[2] = {sim.make_download(), sim.make_download()};
+      const HostBytes empty_field{HostAllocator<std::uint8_t>(&sim.host_memory())};
+      FrameJob in_transit;
+      Download* carrying = nullptr;  // in_transit's download, while it has one
+      const auto hand_over = [&] {
+        if (!carrying) return;
+        carrying->finish();
+        carrying = nullptr;
+        output.push(std::move(in_transit));
+      };
       try {
         for (long k = 0; k < frames && !interrupted; ++k) {
           const Clock::time_point step_start = Clock::now();
           sim.step();
           FrameJob job = output.spare();
-          job.fields.resize(specs.size());
+          job.fields.resize(specs.size(), empty_field);
+          Download& download = *downloads[k % 2];
           for (std::size_t f = 0; f < specs.size(); ++f) {
-            job.fields[f].resize(sim.field(specs[f].name).field->bytes());
-            sim.copy_field(specs[f].name, job.fields[f].data());
+            const FieldView field = sim.field(specs[f].name);
+            job.fields[f].resize(field.field->bytes());
+            download.add(job.fields[f].data(), field.data, field.field->bytes());
           }
           job.frame = k;
           job.time_s = sim.time_s();
           job.ticks = sim.haptic_ticks();
+          hand_over();  // the frame before, whose copies ran while this one computed
+          in_transit = std::move(job);
+          carrying = &download;
           frame_seconds.push_back(seconds_since(step_start));
           simulate_s += frame_seconds.back();
           tick_seconds.insert(tick_seconds.end(), sim.haptic_tick_seconds().begin(), sim.haptic_tick_seconds().end());
-          output.push(std::move(job));
           progress.update(k + 1);
         }
         // Every frame made is written, an interrupted run's too.
+        hand_over();
         output.drain();
       } catch (...) {
-        // What was queued before the failure is written (or fails too) before the count is taken.
+        // What was made before the failure is written (or fails too) before the count is taken.
+        try {
+          hand_over();
+        } catch (...) {
+        }
         try {
           output.drain();
         } catch (...) {

@@ -2,8 +2,10 @@
 #include <cuda_runtime.h>
 
 #include <cstdio>
+#include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "core/physics/particles.h"
 #include "core/runtime/backend.h"
@@ -38,6 +40,58 @@ class CudaEvent {
   cudaEvent_t event_{};
 };
 
+// Page-locked host memory: the GPU's copy engines write it directly, at the link's full rate, while
+// the GPU computes.
+class PinnedMemory final : public HostMemory {
+ public:
+  void* allocate(std::size_t bytes) override {
+    void* data = nullptr;
+    BLEEDSIM_CUDA_CHECK(cudaMallocHost(&data, bytes));
+    return data;
+  }
+  void release(void* data) noexcept override { cudaFreeHost(data); }
+};
+
+// A frame's fields on their way to the host while the next frame computes. Each is copied aside on
+// the device in the work's order (on the default stream: a device-to-device copy of microseconds),
+// then sent from that copy to its destination on a stream that waits for the copy aside alone, so
+// the next frame's kernels, queued behind the copy aside, run meanwhile. The copies aside stay from
+// frame to frame.
+class CudaDownload final : public Download {
+ public:
+  explicit CudaDownload(Backend& backend) : backend_(backend) {
+    BLEEDSIM_CUDA_CHECK(cudaStreamCreateWithFlags(&stream_, cudaStreamNonBlocking));
+  }
+  ~CudaDownload() override {
+    cudaStreamSynchronize(stream_);
+    cudaStreamDestroy(stream_);
+  }
+  CudaDownload(const CudaDownload&) = delete;
+  CudaDownload& operator=(const CudaDownload&) = delete;
+
+  void add(void* dst, const void* src, std::size_t bytes) override {
+    if (added_ == aside_.size()) aside_.emplace_back();
+    Buffer& aside = aside_[added_++];
+    // Grown only between rounds: finish() has waited for every transfer out of the old one.
+    if (aside.bytes() < bytes) aside = backend_.allocate(bytes);
+    BLEEDSIM_CUDA_CHECK(cudaMemcpyAsync(aside.data(), src, bytes, cudaMemcpyDeviceToDevice, cudaStreamLegacy));
+    BLEEDSIM_CUDA_CHECK(cudaEventRecord(taken_.get(), cudaStreamLegacy));
+    BLEEDSIM_CUDA_CHECK(cudaStreamWaitEvent(stream_, taken_.get(), 0));
+    BLEEDSIM_CUDA_CHECK(cudaMemcpyAsync(dst, aside.data(), bytes, cudaMemcpyDeviceToHost, stream_));
+  }
+  void finish() override {
+    BLEEDSIM_CUDA_CHECK(cudaStreamSynchronize(stream_));
+    added_ = 0;
+  }
+
+ private:
+  Backend& backend_;
+  cudaStream_t stream_{};
+  CudaEvent taken_;
+  std::vector<Buffer> aside_;  // on the device, one a field
+  std::size_t added_ = 0;      // copies in this round
+};
+
 class CudaBackend final : public Backend {
  public:
   explicit CudaBackend(int device) : device_(device) {
@@ -67,6 +121,8 @@ class CudaBackend final : public Backend {
     BLEEDSIM_CUDA_CHECK(cudaMemcpy(dst, src, bytes, cudaMemcpyDeviceToHost));
   }
   void synchronize() override { BLEEDSIM_CUDA_CHECK(cudaDeviceSynchronize()); }
+  HostMemory& host_memory() override { return host_memory_; }
+  std::unique_ptr<Download> make_download() override { return std::make_unique<CudaDownload>(*this); }
   std::size_t memory_available() const override {
     std::size_t free_bytes = 0, total_bytes = 0;
     BLEEDSIM_CUDA_CHECK(cudaMemGetInfo(&free_bytes, &total_bytes));
@@ -97,6 +153,7 @@ class CudaBackend final : public Backend {
  private:
   int device_ = 0;
   cudaDeviceProp properties_{};
+  PinnedMemory host_memory_;
 };
 
 }  // namespace

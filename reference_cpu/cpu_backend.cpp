@@ -21,6 +21,19 @@ std::string cpu_model() {
   return "unknown CPU";
 }
 
+class OrdinaryMemory final : public HostMemory {
+ public:
+  void* allocate(std::size_t bytes) override { return ::operator new(bytes); }
+  void release(void* data) noexcept override { ::operator delete(data); }
+};
+
+// Host memory to host memory: nothing runs on while the run copies, so each copy is made at once.
+class CopyAtOnce final : public Download {
+ public:
+  void add(void* dst, const void* src, std::size_t bytes) override { std::memcpy(dst, src, bytes); }
+  void finish() override {}
+};
+
 class CpuBackend final : public Backend {
  public:
   explicit CpuBackend(int threads)
@@ -33,6 +46,8 @@ class CpuBackend final : public Backend {
   void upload(void* dst, const void* src, std::size_t bytes) override { std::memcpy(dst, src, bytes); }
   void download(void* dst, const void* src, std::size_t bytes) override { std::memcpy(dst, src, bytes); }
   void synchronize() override {}
+  HostMemory& host_memory() override { return host_memory_; }
+  std::unique_ptr<Download> make_download() override { return std::make_unique<CopyAtOnce>(); }
   std::size_t memory_available() const override { return available_host_memory(); }
   std::size_t particle_sort_scratch_bytes(int, std::uint32_t) const override { return 0; }
   double time_ms(const std::function<void()>& work) override {
@@ -49,6 +64,9 @@ class CpuBackend final : public Backend {
     return data;
   }
   void release_raw(void* data) override { std::free(data); }
+
+ private:
+  OrdinaryMemory host_memory_;
 };
 
 }  // namespace

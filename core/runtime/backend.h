@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "core/runtime/buffer.h"
+#include "core/runtime/download.h"
 
 // Backend::run below must see whether the CUDA twins exist: bleedsim::core's CMake target says.
 #ifndef BLEEDSIM_HAVE_CUDA
@@ -33,6 +34,11 @@ class Backend {
   virtual void upload(void* dst, const void* src, std::size_t bytes) = 0;
   virtual void download(void* dst, const void* src, std::size_t bytes) = 0;
   virtual void synchronize() = 0;
+  // Host memory for fields copied out frame after frame, and a Download to copy them: on the CPU
+  // ordinary memory and each copy made as it is added; on CUDA page-locked memory, each field taken
+  // aside on the device and sent from there on a stream of its own while the next frame computes.
+  virtual HostMemory& host_memory() = 0;
+  virtual std::unique_ptr<Download> make_download() = 0;
   // Memory it can still allocate, in bytes.
   virtual std::size_t memory_available() const = 0;
   // Milliseconds `work` takes as the backend sees it: the wall clock on the CPU, CUDA events

@@ -65,6 +65,10 @@ class Simulation {
   FieldView field(const std::string& name) const;
   std::vector<std::uint8_t> copy_field(const std::string& name) const;
   void copy_field(const std::string& name, void* host_destination) const;
+  // For copying fields out while the next frames compute (Download::add of field(name).data into
+  // host_memory()'s buffers): the backend's, which must not outlive this Simulation.
+  HostMemory& host_memory() { return backend_->host_memory(); }
+  std::unique_ptr<Download> make_download() { return backend_->make_download(); }
 
   std::vector<StageReport> pipeline_report() const { return pipeline_->report(*backend_); }
 

@@ -29,7 +29,7 @@ constexpr int kTasks = 3;
 FrameJob job_for(FrameJob job, long frame) {
   job.frame = frame;
   job.fields.resize(kTasks);
-  for (std::vector<std::uint8_t>& field : job.fields) field.assign(16, 0);
+  for (HostBytes& field : job.fields) field.assign(16, 0);
   return job;
 }
 
@@ -45,8 +45,8 @@ OutputWork work(std::function<void(FrameJob&, int)> encode, std::function<void(c
 }
 
 bool encoded(const FrameJob& job) {
-  for (const std::vector<std::uint8_t>& field : job.fields)
-    if (field != std::vector<std::uint8_t>(16, mark(job.frame))) return false;
+  for (const HostBytes& field : job.fields)
+    if (field != HostBytes(16, mark(job.frame))) return false;
   return true;
 }
 
