@@ -35,25 +35,40 @@ struct BlurArgs {
 // pixel a division, a long sequence on the GPU.
 BLEEDSIM_HD inline float inverse_factor(int factor) { return factor == 4 ? 0.25f : factor == 2 ? 0.5f : 1.0f; }
 
-// Downsample: the mean of the factor × factor block (the part of it inside the panel, at an edge).
-// A whole block counts factor² pixels, a power of two: its exact inverse, as inverse_factor.
+// Downsample: the mean of the factor × factor block (the part of it inside the panel, at an edge),
+// summed row by row, each left to right. A whole block counts factor² pixels, a power of two: its
+// exact inverse, as inverse_factor; and it needs no test of the panel's edge at each pixel.
 BLEEDSIM_HD inline float block_mean(const BlurArgs& a, int i, int j) {
+  const int x0 = i * a.factor, y0 = j * a.factor;
   float sum = 0.0f;
+  if (x0 + a.factor <= a.width && y0 + a.factor <= a.height) {
+    for (int y = y0; y < y0 + a.factor; ++y) {
+      const float* row = a.film + std::size_t(y) * a.width + x0;
+      for (int x = 0; x < a.factor; ++x) sum += row[x];
+    }
+    const float inverse = inverse_factor(a.factor);
+    return sum * (inverse * inverse);
+  }
   int count = 0;
-  for (int y = j * a.factor; y < (j + 1) * a.factor && y < a.height; ++y)
-    for (int x = i * a.factor; x < (i + 1) * a.factor && x < a.width; ++x, ++count)
-      sum += a.film[std::size_t(y) * a.width + x];
-  const float inverse = inverse_factor(a.factor);
-  return count == a.factor * a.factor ? sum * (inverse * inverse) : sum / float(count);
+  for (int y = y0; y < y0 + a.factor && y < a.height; ++y)
+    for (int x = x0; x < x0 + a.factor && x < a.width; ++x, ++count) sum += a.film[std::size_t(y) * a.width + x];
+  return sum / float(count);
 }
 
-// One pass of the separable Gaussian at (i, j): along the row, or down the column.
+// One pass of the separable Gaussian at (i, j): along the row, or down the column, the taps summed
+// from the first to the last. Where every tap lies on the panel (all but `radius` pixels at either
+// end of a line) they are read straight along the line, without the clamp an edge needs.
 BLEEDSIM_HD inline float gaussian_tap_sum(const BlurArgs& a, const float* in, int i, int j, bool horizontal) {
+  const int at = horizontal ? i : j, size = horizontal ? a.low_width : a.low_height;
+  const std::size_t step = horizontal ? 1 : std::size_t(a.low_width);
+  const float* line = in + (horizontal ? std::size_t(j) * a.low_width : std::size_t(i));  // the line's first pixel
   float sum = 0.0f;
-  for (int k = -a.radius; k <= a.radius; ++k) {
-    const int x = horizontal ? clamp_index(i + k, a.low_width) : i;
-    const int y = horizontal ? j : clamp_index(j + k, a.low_height);
-    sum += a.weights[k + a.radius] * in[std::size_t(y) * a.low_width + x];
+  if (at >= a.radius && at + a.radius < size) {
+    const float* tap = line + std::size_t(at - a.radius) * step;
+    for (int k = 0; k <= 2 * a.radius; ++k, tap += step) sum += a.weights[k] * *tap;
+  } else {
+    for (int k = -a.radius; k <= a.radius; ++k)
+      sum += a.weights[k + a.radius] * line[std::size_t(clamp_index(at + k, size)) * step];
   }
   return sum;
 }
