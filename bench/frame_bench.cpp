@@ -119,7 +119,7 @@ struct FrameScene {
   double film_max_mm = 0.0;    // the blurred film after one frame: its thickest pixel ...
   double film_share = 0.0;     // ... and the share of the panel it covers
 
-  Buffer position, age, units, film, weights, low, across, blurred, cuts, stain, tissue, tables, residue, frame_rgba,
+  Buffer position, age, units, stamps, film, weights, low, across, blurred, cuts, stain, tissue, tables, residue, frame_rgba,
       sweep, fixed_light;
   std::vector<float> segments;  // the suction's path over one frame, as uploaded to `sweep`
   double reach_mm = 0.0;        // the suction's radius
@@ -163,11 +163,16 @@ struct FrameScene {
     splat_args.grid = grid;
     splat_args.units = units.as<std::uint64_t>();
     splat_args.thickness_mm = film.as<float>();
+    const std::vector<std::uint32_t> unstamped(splat_tile_count(grid), 0u);
+    stamps = backend->allocate(unstamped.size() * sizeof(std::uint32_t));
+    backend->upload(stamps.data(), unstamped.data(), stamps.bytes());
+    splat_args.tiles = {stamps.as<std::uint32_t>(), splat_tiles_across(grid), 0u};
     {  // Its deposits, counted on the host from the same positions.
       SplatArgs host = splat_args;
       host.position = xy.data();
       host.age = ages.data();
-      for (int slot = 0; slot < n; ++slot) splat_particle(host, slot, [&](std::size_t, std::uint64_t) { ++deposits; });
+      for (int slot = 0; slot < n; ++slot)
+        splat_particle(host, slot, [&](std::size_t, std::uint64_t) { ++deposits; }, [](int) {});
     }
     splat_args.position = position.as<const float>();
     splat_args.age = age.as<const std::uint32_t>();
@@ -261,7 +266,11 @@ struct FrameScene {
   }
 
   void spread() { backend->run("spread", spread_work); }
-  void splat() { backend->run("splat", splat_args); }
+  // Each a frame: its stamp follows the last one's, as the splat stage's does.
+  void splat() {
+    ++splat_args.tiles.now;
+    backend->run("splat", splat_args);
+  }
   template <class Pass>
   void blur(const Pass& pass) { backend->run("blur", pass); }
   void blur() { blur_passes(blur_args).each([&](const auto& pass) { blur(pass); }); }

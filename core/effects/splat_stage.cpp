@@ -4,6 +4,8 @@
 #include "core/effects/surface_stage.h"
 #include "core/physics/splat.h"
 
+#include <vector>
+
 namespace bleedsim {
 namespace {
 
@@ -23,7 +25,9 @@ SplatModel make_splat_model(const ParticleParams& p, const Domain& domain) {
 }
 
 SplatStage::SplatStage(const StageKind& kind, const Scene& scene, State& state, Backend& backend)
-    : Stage(kind), units_(allocate(backend, pixels(scene) * sizeof(std::uint64_t))) {
+    : Stage(kind),
+      units_(allocate(backend, pixels(scene) * sizeof(std::uint64_t))),
+      stamps_(allocate(backend, splat_tile_count(scene.domain.grid()) * sizeof(std::uint32_t))) {
   const Field& position = input(scene, state, "particles/position");
   const Field& age = input(scene, state, "particles/age");
   Field& thickness = add_field(scene, state, backend, "splat/thickness");
@@ -35,13 +39,21 @@ SplatStage::SplatStage(const StageKind& kind, const Scene& scene, State& state, 
   args_.grid = scene.domain.grid();
   args_.units = units_.as<std::uint64_t>();
   args_.thickness_mm = thickness.data.as<float>();
+  // Stamped by no frame: the first frame clears every tile, whatever the sum held.
+  const std::vector<std::uint32_t> unstamped(splat_tile_count(args_.grid), 0u);
+  backend.upload(stamps_.data(), unstamped.data(), stamps_.bytes());
+  args_.tiles = {stamps_.as<std::uint32_t>(), splat_tiles_across(args_.grid), 0u};
   args_.surface = surface_map(scene, state);
 }
 
 MemoryParts SplatStage::memory_for(const Scene& scene) {
-  return {scene.domain.memory(sizeof(std::uint64_t) + sizeof(float))};
+  return {scene.domain.memory(sizeof(std::uint64_t) + sizeof(float)),
+          {"scene.width_px", "the splat's tile stamps", Count(splat_tile_count(scene.domain.grid())) * sizeof(std::uint32_t)}};
 }
 
-void SplatStage::run(const Scene&, State&, Backend& backend) { launch(backend, args_); }
+void SplatStage::run(const Scene&, State&, Backend& backend) {
+  ++args_.tiles.now;
+  launch(backend, args_);
+}
 
 }  // namespace bleedsim

@@ -16,7 +16,8 @@ class SplatStage final : public Stage {
 
  private:
   SplatArgs args_{};
-  Buffer units_;  // the fixed-point sum
+  Buffer units_;   // the fixed-point sum
+  Buffer stamps_;  // its tiles' stamps
 };
 
 // The splat's constants for a scene with particles, on its panel's pixels.

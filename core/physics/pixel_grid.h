@@ -29,12 +29,19 @@ BLEEDSIM_HD inline int clamp_index(int v, int size) {
   return below_end > 0 ? below_end : 0;
 }
 
+struct PixelAt {
+  int i, j;
+};
+
 // The pixel holding (x, y), clamped to the panel (before the conversion: float→int of out-of-range
-// values differs between CPU and GPU).
+// values differs between CPU and GPU): its column and row, and its index.
+BLEEDSIM_HD inline PixelAt pixel_at(const PixelGrid& g, float x, float y) {
+  return {int(fminf(fmaxf(floorf(x / g.mm_per_px_x), 0.0f), float(g.width - 1))),
+          int(fminf(fmaxf(floorf(y / g.mm_per_px_y), 0.0f), float(g.height - 1)))};
+}
 BLEEDSIM_HD inline std::size_t pixel_containing(const PixelGrid& g, float x, float y) {
-  const int i = int(fminf(fmaxf(floorf(x / g.mm_per_px_x), 0.0f), float(g.width - 1)));
-  const int j = int(fminf(fmaxf(floorf(y / g.mm_per_px_y), 0.0f), float(g.height - 1)));
-  return std::size_t(j) * std::size_t(g.width) + std::size_t(i);
+  const PixelAt p = pixel_at(g, x, y);
+  return std::size_t(p.j) * std::size_t(g.width) + std::size_t(p.i);
 }
 
 }  // namespace bleedsim

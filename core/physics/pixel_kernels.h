@@ -19,7 +19,6 @@
   X(BlurDownsample)               \
   X(BlurGaussian)                 \
   X(BlurUpsample)                 \
-  X(SplatThickness)               \
   X(TrailPixel)                   \
   X(TrailThenBlend)
 

@@ -42,6 +42,33 @@ constexpr float kMaxDepositUnits = 1.0e9f;
 // float from one unit up, so the rounding is exactly half up there).
 constexpr float kSplatWeightUnits = 8388608.0f;
 
+// The sum is kept in tiles of kSplatTilePx × kSplatTilePx pixels, each stamped with the number of
+// the last frame whose deposits could reach it. A frame clears only the tiles the frame before
+// stamped (every other sum is zero already) and reads back only those it stamped itself (elsewhere
+// the film is zero): the splat moves the bytes under the blood, not the panel's. Stamps are only
+// compared for equality, so they may wrap: a stale stamp that matches costs a needless clear, or a
+// read of zeros, and never a byte.
+constexpr int kSplatTilePx = 32;
+
+struct SplatTiles {
+  std::uint32_t* stamp = nullptr;  // one a tile, row by row; all 0 before the first frame
+  int across = 0;                  // tiles in a row
+  std::uint32_t now = 1;           // this frame's stamp: one more than the frame before's
+};
+
+inline int splat_tiles_across(const PixelGrid& g) { return (g.width + kSplatTilePx - 1) / kSplatTilePx; }
+inline std::size_t splat_tile_count(const PixelGrid& g) {
+  return std::size_t(splat_tiles_across(g)) * std::size_t((g.height + kSplatTilePx - 1) / kSplatTilePx);
+}
+
+BLEEDSIM_HD inline int splat_tile(const SplatTiles& t, int i, int j) {
+  return (j / kSplatTilePx) * t.across + i / kSplatTilePx;
+}
+// Whether the frame before may have left a sum in tile `tile`: the sums this frame must clear.
+BLEEDSIM_HD inline bool stamped_before(const SplatTiles& t, int tile) { return t.stamp[tile] == t.now - 1u; }
+// Whether this frame's deposits may have reached tile `tile`: elsewhere the sum is zero.
+BLEEDSIM_HD inline bool stamped_now(const SplatTiles& t, int tile) { return t.stamp[tile] == t.now; }
+
 // The splat's constants for a run, made on the host.
 struct SplatModel {
   float radius_mm;      // R
@@ -59,6 +86,7 @@ struct SplatArgs {
   PixelGrid grid;
   std::uint64_t* units;     // grid.width × grid.height: the sum, in kSplatUnitMm
   float* thickness_mm;      // the same, in mm
+  SplatTiles tiles;         // where the sum may be other than zero
   SurfaceMap surface = {};  // a tissue mesh's maps; empty on the flat panel
 };
 
@@ -146,10 +174,11 @@ BLEEDSIM_HD inline std::uint64_t share_of(std::uint64_t blood, std::uint64_t wei
 // weight is at most 2²³ units: 32 bits hold it); a larger one computes them again, the same.
 constexpr int kKeptWeights = 32;
 
-// Calls deposit(pixel, units) for each pixel that receives a share of the particle in `slot`: one
-// sweep sums its footprint's weights, a second hands out the blood in proportion.
-template <class Deposit>
-BLEEDSIM_HD inline void splat_particle(const SplatArgs& a, int slot, Deposit deposit) {
+// Calls stamp(tile) for each tile the particle's blood may reach, then deposit(pixel, units) for
+// each pixel that receives a share of the particle in `slot`: one sweep sums its footprint's
+// weights, a second hands out the blood in proportion.
+template <class Deposit, class Stamp>
+BLEEDSIM_HD inline void splat_particle(const SplatArgs& a, int slot, Deposit deposit, Stamp stamp) {
   const std::uint32_t age = a.age[slot];
   if (!is_alive(a.lifetime, age)) return;
   const std::uint64_t blood = blood_units(a.splat, fade_alpha(a.lifetime, age));
@@ -167,9 +196,13 @@ BLEEDSIM_HD inline void splat_particle(const SplatArgs& a, int slot, Deposit dep
     if (keep) kept[visited++] = std::uint32_t(w);
   });
   if (total == 0) {
-    deposit(pixel_containing(a.grid, x, y), blood);
+    const PixelAt p = pixel_at(a.grid, x, y);
+    stamp(splat_tile(a.tiles, p.i, p.j));
+    deposit(std::size_t(p.j) * std::size_t(a.grid.width) + std::size_t(p.i), blood);
     return;
   }
+  for (int tj = f.j0 / kSplatTilePx; tj <= f.j1 / kSplatTilePx; ++tj)
+    for (int ti = f.i0 / kSplatTilePx; ti <= f.i1 / kSplatTilePx; ++ti) stamp(tj * a.tiles.across + ti);
   const ShareDivisor divisor = share_divisor(total);
   const auto hand_out = [&](std::size_t pixel, std::uint64_t w) {
     if (w == 0) return;  // share_of(blood, 0, ·) is 0: a footprint's corners outside R cost nothing
@@ -187,27 +220,17 @@ BLEEDSIM_HD inline void splat_particle(const SplatArgs& a, int slot, Deposit dep
 
 BLEEDSIM_HD inline float thickness_from_units(std::uint64_t units) { return float(units) * kSplatUnitMm; }
 
-// The sum converted to millimetres, pixel by pixel (core/physics/pixel_kernels.h runs it): on a mesh,
-// over the pixel's area on the surface.
-struct SplatThickness {
-  PixelGrid grid;
-  const std::uint64_t* units;
-  float* thickness_mm;
-  SurfaceMap surface;
+// Pixel p's film, in mm: its sum converted, or zero where this frame's deposits did not reach
+// (`reached` false: the sum there is zero, and is not read); on a mesh, over the pixel's area on the
+// surface. The twins convert a tile at a time, asking its stamp once.
+BLEEDSIM_HD inline float film_mm(const SplatArgs& a, std::size_t p, bool reached) {
+  const float film = reached ? thickness_from_units(a.units[p]) : 0.0f;
+  return curved(a.surface) ? film / area_stretch(frame_of(a.surface, p)) : film;
+}
 
-  BLEEDSIM_HD int width() const { return grid.width; }
-  BLEEDSIM_HD int height() const { return grid.height; }
-  BLEEDSIM_HD void operator()(int i, int j) const {
-    const std::size_t p = std::size_t(j) * grid.width + i;
-    const float film = thickness_from_units(units[p]);
-    thickness_mm[p] = curved(surface) ? film / area_stretch(frame_of(surface, p)) : film;
-  }
-};
-
-inline SplatThickness splat_thickness(const SplatArgs& a) { return {a.grid, a.units, a.thickness_mm, a.surface}; }
-
-// The stage's twins: clear the sum, deposit every live particle (a loop on the CPU, integer atomics
-// on the GPU), then SplatThickness's twin.
+// The stage's twins: clear the tiles the frame before stamped, deposit every live particle (a loop
+// on the CPU, integer atomics on the GPU), then convert the sum to millimetres. Each call is a
+// frame: the caller gives each the stamp after the last one's.
 void cpu_twin(const SplatArgs& args, int threads);
 void cuda_twin(const SplatArgs& args);
 

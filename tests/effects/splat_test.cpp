@@ -26,6 +26,7 @@ struct Film {
   std::vector<std::uint32_t> age;
   std::vector<std::uint64_t> units;
   std::vector<float> thickness;
+  std::vector<std::uint32_t> stamps;
   SplatArgs args{};
 
   Film(std::vector<float> xy, std::vector<std::uint32_t> ages, float radius_mm, double pitch_mm = 0.01,
@@ -43,6 +44,8 @@ struct Film {
     thickness.resize(units.size());
     args.units = units.data();
     args.thickness_mm = thickness.data();
+    stamps.resize(splat_tile_count(args.grid));
+    args.tiles = {stamps.data(), splat_tiles_across(args.grid), 1u};
     cpu_twin(args, 2);
   }
   double pixel_mm() const { return domain.width_mm / domain.width_px; }
