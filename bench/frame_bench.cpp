@@ -166,6 +166,7 @@ struct FrameScene {
     const std::vector<std::uint32_t> unstamped(splat_tile_count(grid), 0u);
     stamps = backend->allocate(unstamped.size() * sizeof(std::uint32_t));
     backend->upload(stamps.data(), unstamped.data(), stamps.bytes());
+    backend->upload(units.data(), std::vector<std::uint64_t>(pixels, 0u).data(), units.bytes());
     splat_args.tiles = {stamps.as<std::uint32_t>(), splat_tiles_across(grid), 0u};
     {  // Its deposits, counted on the host from the same positions.
       SplatArgs host = splat_args;
@@ -274,19 +275,26 @@ struct FrameScene {
   template <class Pass>
   void blur(const Pass& pass) { backend->run("blur", pass); }
   void blur() { blur_passes(blur_args).each([&](const auto& pass) { blur(pass); }); }
+  // The splat, then the blur, as the stages run them in a frame: the blur's downsample in the
+  // splat's conversion pass, then the blur's other three passes.
+  void splat_and_blur() {
+    ++splat_args.tiles.now;
+    SplatArgs with_downsample = splat_args;
+    with_downsample.downsample = blur_args;
+    backend->run_shared({"splat", "blur"}, with_downsample);
+    blur_passes(blur_args).each([&](const auto& pass) { blur(pass); }, false);
+  }
   void blend() { backend->run("blend", blend_work); }
   void frame() {
     spread();
-    splat();
-    blur();
+    splat_and_blur();
     blend();
   }
   void trail() { backend->run("trail", trail_work); }
   // The trail in the lit blend's pass, as the blend stage runs it.
   void frame_lit() {
     spread();
-    splat();
-    blur();
+    splat_and_blur();
     backend->run_shared({"trail", "blend"}, pair_pixels(trail_work, lit_blend_work));
   }
   void run(Work work) {

@@ -1,6 +1,7 @@
-// The CUDA twin of the splat: a block per tile clears what the frame before left, a thread per slot
-// deposits with integer atomics, and a block per tile converts the sum.
+// The CUDA twin of the splat: a thread per slot deposits with integer atomics, and a block per tile
+// converts the sum (and downsamples the film).
 #include <cstddef>
+#include <stdexcept>
 
 #include "core/physics/splat.h"
 #include "kernels/cuda_check.h"
@@ -25,17 +26,6 @@ __device__ TilePixel tile_pixel(const SplatArgs& a, int tile, int n) {
   return {i, j, i < a.grid.width && j < a.grid.height, std::size_t(j) * a.grid.width + i};
 }
 
-// A tile the frame before did not stamp holds zeros already: its block leaves at once.
-__global__ void clear_kernel(SplatArgs a) {
-  const int tile = blockIdx.x;
-  if (!stamped_before(a.tiles, tile)) return;
-#pragma unroll
-  for (int n = 0; n < kTilePixelsPerThread; ++n) {
-    const TilePixel q = tile_pixel(a, tile, n);
-    if (q.on_panel) a.units[q.index] = 0;
-  }
-}
-
 // Integer atomics: the sum of the deposits does not depend on their order. A tile's stamp is
 // written once a frame, by whichever thread finds it old (all write the same).
 __global__ void deposit_kernel(SplatArgs a) {
@@ -50,10 +40,34 @@ __global__ void deposit_kernel(SplatArgs a) {
       });
 }
 
-// Each thread reads its pixels' sums before it writes any film, so its reads are in flight together.
+// Each thread reads its pixels' sums before it writes any film (or sets a sum back to zero), so its
+// reads are in flight together.
+// With a downsample factor (1, 2 or 4; 0: none), the block keeps its tile's film and takes the
+// means of the blocks in it (a tile's side, 32, is a multiple of every factor: no block crosses a
+// tile's edge); the factor is the kernel's constant, so a block's loops unroll.
+template <int Factor>
 __global__ void film_kernel(SplatArgs a) {
   const int tile = blockIdx.x;
   const bool reached = stamped_now(a.tiles, tile);
+  if (!reached && !curved(a.surface)) {  // a film of zeros: the whole block leaves here together
+    if (stamped_before(a.tiles, tile))
+#pragma unroll
+      for (int n = 0; n < kTilePixelsPerThread; ++n) {
+        const TilePixel q = tile_pixel(a, tile, n);
+        if (q.on_panel) a.thickness_mm[q.index] = 0.0f;
+      }
+    // The blur's vertical pass writes `low` too: its means are written every frame, here zeros.
+    if constexpr (Factor > 0) {
+      const BlurArgs& b = a.downsample;
+      constexpr int side = kSplatTilePx / Factor;
+      const int i0 = (tile % a.tiles.across) * side, j0 = (tile / a.tiles.across) * side;
+      for (int k = threadIdx.x; k < side * side; k += kThreads) {
+        const int i = i0 + k % side, j = j0 + k / side;
+        if (i < b.low_width && j < b.low_height) b.low[std::size_t(j) * b.low_width + i] = 0.0f;
+      }
+    }
+    return;
+  }
   float film[kTilePixelsPerThread];
 #pragma unroll
   for (int n = 0; n < kTilePixelsPerThread; ++n) {
@@ -63,7 +77,29 @@ __global__ void film_kernel(SplatArgs a) {
 #pragma unroll
   for (int n = 0; n < kTilePixelsPerThread; ++n) {
     const TilePixel q = tile_pixel(a, tile, n);
-    if (q.on_panel) a.thickness_mm[q.index] = film[n];
+    if (!q.on_panel) continue;
+    a.thickness_mm[q.index] = film[n];
+    if (reached) a.units[q.index] = 0;
+  }
+  if constexpr (Factor > 0) {
+    __shared__ float kept[kSplatTilePx][kSplatTilePx + 1];  // + 1: a column's reads fall in different banks
+#pragma unroll
+    for (int n = 0; n < kTilePixelsPerThread; ++n) {
+      const int k = threadIdx.x + n * kThreads;
+      if (tile_pixel(a, tile, n).on_panel) kept[k / kSplatTilePx][k % kSplatTilePx] = film[n];
+    }
+    __syncthreads();
+    BlurArgs b = a.downsample;
+    b.factor = Factor;
+    constexpr int side = kSplatTilePx / Factor;  // the tile's blocks a row
+    const int i0 = (tile % a.tiles.across) * kSplatTilePx, j0 = (tile / a.tiles.across) * kSplatTilePx;
+#pragma unroll
+    for (int k = threadIdx.x; k < side * side; k += kThreads) {
+      const int i = i0 / Factor + k % side, j = j0 / Factor + k / side;
+      if (i < b.low_width && j < b.low_height)
+        b.low[std::size_t(j) * b.low_width + i] =
+            block_mean_of(b, i, j, [&](int x, int y) { return kept[y - j0][x - i0]; });
+    }
   }
 }
 
@@ -71,11 +107,15 @@ __global__ void film_kernel(SplatArgs a) {
 
 void cuda_twin(const SplatArgs& a) {
   const unsigned tiles = unsigned(splat_tile_count(a.grid));
-  clear_kernel<<<tiles, kThreads>>>(a);
-  check_launch("clear_kernel");
   deposit_kernel<<<(a.capacity + kThreads - 1) / kThreads, kThreads>>>(a);
   check_launch("deposit_kernel");
-  film_kernel<<<tiles, kThreads>>>(a);
+  switch (a.downsample.low ? a.downsample.factor : 0) {
+    case 0: film_kernel<0><<<tiles, kThreads>>>(a); break;
+    case 1: film_kernel<1><<<tiles, kThreads>>>(a); break;
+    case 2: film_kernel<2><<<tiles, kThreads>>>(a); break;
+    case 4: film_kernel<4><<<tiles, kThreads>>>(a); break;
+    default: throw std::logic_error("splat: a downsample factor other than 1, 2 or 4");
+  }
   check_launch("film_kernel");
 }
 

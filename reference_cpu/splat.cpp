@@ -1,9 +1,10 @@
-// The CPU twin of the splat: the tiles the frame before stamped cleared row by row, the deposits of
-// bands of slots summed on the threads, each into the pixel's 64-bit integer by an atomic add
-// (integer sums: neither the order nor the thread count changes a bit), then the sum converted row
-// by row.
+// The CPU twin of the splat: the deposits of bands of slots summed on the threads, each into the
+// pixel's 64-bit integer by an atomic add (integer sums: neither the order nor the thread count
+// changes a bit), then the sum converted row by row, leaving it zero (and the film downsampled, the
+// blur's own pass).
 #include <algorithm>
 
+#include "core/physics/pixel_kernels.h"
 #include "core/physics/splat.h"
 #include "reference_cpu/parallel_rows.h"
 
@@ -21,11 +22,6 @@ void for_each_tile_of_row(const SplatArgs& a, int j, const Fn& fn) {
 }  // namespace
 
 void cpu_twin(const SplatArgs& a, int threads) {
-  parallel_rows(a.grid.height, threads, [&](int j) {
-    for_each_tile_of_row(a, j, [&](std::size_t first, std::size_t end, int tile) {
-      if (stamped_before(a.tiles, tile)) std::fill(a.units + first, a.units + end, std::uint64_t(0));
-    });
-  });
   const int bands = threads_for_particles(a.capacity, threads);
   if (bands == 1) {
     for (int slot = 0; slot < a.capacity; ++slot)
@@ -44,9 +40,12 @@ void cpu_twin(const SplatArgs& a, int threads) {
   parallel_rows(a.grid.height, threads, [&](int j) {
     for_each_tile_of_row(a, j, [&](std::size_t first, std::size_t end, int tile) {
       const bool reached = stamped_now(a.tiles, tile);
+      if (!reached && !curved(a.surface) && !stamped_before(a.tiles, tile)) return;  // zeros already
       for (std::size_t p = first; p < end; ++p) a.thickness_mm[p] = film_mm(a, p, reached);
+      if (reached) std::fill(a.units + first, a.units + end, std::uint64_t(0));
     });
   });
+  if (a.downsample.low) cpu_twin(BlurDownsample{a.downsample}, threads);
 }
 
 }  // namespace bleedsim

@@ -46,6 +46,7 @@ BlurStage::BlurStage(const StageKind& kind, const Scene& scene, State& state, Ba
   args_.low = low_.as<float>();
   args_.across = across_.as<float>();
   args_.blurred = blurred.data.as<float>();
+  state.film_downsample = args_;
 }
 
 MemoryParts BlurStage::memory_for(const Scene& scene) {
@@ -58,8 +59,9 @@ MemoryParts BlurStage::memory_for(const Scene& scene) {
           {"blur.radius_px", "the blur's weights", (Count(2) * Count(scene.blur->radius_px) + 1) * sizeof(float)}};
 }
 
+// The downsample ran in the splat's pass (its twin is given state.film_downsample).
 void BlurStage::run(const Scene&, State&, Backend& backend) {
-  blur_passes(args_).each([&](const auto& pass) { launch(backend, pass); });
+  blur_passes(args_).each([&](const auto& pass) { launch(backend, pass); }, false);
 }
 
 }  // namespace bleedsim

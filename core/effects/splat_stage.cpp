@@ -39,9 +39,9 @@ SplatStage::SplatStage(const StageKind& kind, const Scene& scene, State& state, 
   args_.grid = scene.domain.grid();
   args_.units = units_.as<std::uint64_t>();
   args_.thickness_mm = thickness.data.as<float>();
-  // Stamped by no frame: the first frame clears every tile, whatever the sum held.
-  const std::vector<std::uint32_t> unstamped(splat_tile_count(args_.grid), 0u);
-  backend.upload(stamps_.data(), unstamped.data(), stamps_.bytes());
+  // The sum zero, as every frame leaves it; no tile stamped yet (the first frame's stamp is 1).
+  backend.upload(units_.data(), std::vector<std::uint64_t>(pixels(scene), 0u).data(), units_.bytes());
+  backend.upload(stamps_.data(), std::vector<std::uint32_t>(splat_tile_count(args_.grid), 0u).data(), stamps_.bytes());
   args_.tiles = {stamps_.as<std::uint32_t>(), splat_tiles_across(args_.grid), 0u};
   args_.surface = surface_map(scene, state);
 }
@@ -51,9 +51,13 @@ MemoryParts SplatStage::memory_for(const Scene& scene) {
           {"scene.width_px", "the splat's tile stamps", Count(splat_tile_count(scene.domain.grid())) * sizeof(std::uint32_t)}};
 }
 
-void SplatStage::run(const Scene&, State&, Backend& backend) {
+void SplatStage::run(const Scene&, State& state, Backend& backend) {
   ++args_.tiles.now;
-  launch(backend, args_);
+  if (!state.film_downsample) return launch(backend, args_);
+  // The blur's downsample in the conversion's pass: the film is read back from registers, not memory.
+  SplatArgs with_downsample = args_;
+  with_downsample.downsample = *state.film_downsample;
+  backend.run_shared({name(), "blur"}, with_downsample);
 }
 
 }  // namespace bleedsim

@@ -36,23 +36,27 @@ struct BlurArgs {
 BLEEDSIM_HD inline float inverse_factor(int factor) { return factor == 4 ? 0.25f : factor == 2 ? 0.5f : 1.0f; }
 
 // Downsample: the mean of the factor × factor block (the part of it inside the panel, at an edge),
-// summed row by row, each left to right. A whole block counts factor² pixels, a power of two: its
-// exact inverse, as inverse_factor; and it needs no test of the panel's edge at each pixel.
-BLEEDSIM_HD inline float block_mean(const BlurArgs& a, int i, int j) {
+// summed row by row, each left to right, film(x, y) giving the film at panel pixel (x, y). A whole
+// block counts factor² pixels, a power of two: its exact inverse, as inverse_factor; and it needs
+// no test of the panel's edge at each pixel.
+template <class Film>
+BLEEDSIM_HD inline float block_mean_of(const BlurArgs& a, int i, int j, const Film& film) {
   const int x0 = i * a.factor, y0 = j * a.factor;
   float sum = 0.0f;
   if (x0 + a.factor <= a.width && y0 + a.factor <= a.height) {
-    for (int y = y0; y < y0 + a.factor; ++y) {
-      const float* row = a.film + std::size_t(y) * a.width + x0;
-      for (int x = 0; x < a.factor; ++x) sum += row[x];
-    }
+    for (int y = y0; y < y0 + a.factor; ++y)
+      for (int x = x0; x < x0 + a.factor; ++x) sum += film(x, y);
     const float inverse = inverse_factor(a.factor);
     return sum * (inverse * inverse);
   }
   int count = 0;
   for (int y = y0; y < y0 + a.factor && y < a.height; ++y)
-    for (int x = x0; x < x0 + a.factor && x < a.width; ++x, ++count) sum += a.film[std::size_t(y) * a.width + x];
+    for (int x = x0; x < x0 + a.factor && x < a.width; ++x, ++count) sum += film(x, y);
   return sum / float(count);
+}
+
+BLEEDSIM_HD inline float block_mean(const BlurArgs& a, int i, int j) {
+  return block_mean_of(a, i, j, [&](int x, int y) { return a.film[std::size_t(y) * a.width + x]; });
 }
 
 // One pass of the separable Gaussian at (i, j): along the row, or down the column, the taps summed
@@ -125,7 +129,8 @@ struct BlurUpsample {
 };
 
 // The four passes in the order they run: downsample film → low, horizontal low → across, vertical
-// across → low, upsample low → blurred.
+// across → low, upsample low → blurred. The splat may have downsampled its film already, in its own
+// pass (SplatArgs::downsample): then the three after it.
 struct BlurPasses {
   BlurDownsample downsample;
   BlurGaussian horizontal;
@@ -133,8 +138,8 @@ struct BlurPasses {
   BlurUpsample upsample;
 
   template <class Fn>
-  void each(const Fn& fn) const {
-    fn(downsample);
+  void each(const Fn& fn, bool with_downsample = true) const {
+    if (with_downsample) fn(downsample);
     fn(horizontal);
     fn(vertical);
     fn(upsample);

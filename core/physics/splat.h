@@ -25,6 +25,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "core/physics/blur.h"
 #include "core/physics/hd.h"
 #include "core/physics/particles.h"
 #include "core/physics/pixel_grid.h"
@@ -43,15 +44,17 @@ constexpr float kMaxDepositUnits = 1.0e9f;
 constexpr float kSplatWeightUnits = 8388608.0f;
 
 // The sum is kept in tiles of kSplatTilePx × kSplatTilePx pixels, each stamped with the number of
-// the last frame whose deposits could reach it. A frame clears only the tiles the frame before
-// stamped (every other sum is zero already) and reads back only those it stamped itself (elsewhere
-// the film is zero): the splat moves the bytes under the blood, not the panel's. Stamps are only
-// compared for equality, so they may wrap: a stale stamp that matches costs a needless clear, or a
-// read of zeros, and never a byte.
+// the last frame whose deposits could reach it. The conversion reads back only the tiles stamped
+// this frame (elsewhere the film is zero) and leaves their sums zero again as it reads them: the
+// sum is zero between frames. On the flat panel it writes the film of a tile stamped neither this
+// frame nor the frame before not at all: a frame's conversion wrote its zeros already, and only the
+// splat writes the film. So the splat moves the bytes under the blood, not the panel's. Stamps are
+// only compared for equality, so they may wrap: a stale stamp that matches costs a read or a write
+// of zeros, never a byte.
 constexpr int kSplatTilePx = 32;
 
 struct SplatTiles {
-  std::uint32_t* stamp = nullptr;  // one a tile, row by row; all 0 before the first frame
+  std::uint32_t* stamp = nullptr;  // one a tile, row by row; before the first frame, all now − 1
   int across = 0;                  // tiles in a row
   std::uint32_t now = 1;           // this frame's stamp: one more than the frame before's
 };
@@ -64,10 +67,10 @@ inline std::size_t splat_tile_count(const PixelGrid& g) {
 BLEEDSIM_HD inline int splat_tile(const SplatTiles& t, int i, int j) {
   return (j / kSplatTilePx) * t.across + i / kSplatTilePx;
 }
-// Whether the frame before may have left a sum in tile `tile`: the sums this frame must clear.
-BLEEDSIM_HD inline bool stamped_before(const SplatTiles& t, int tile) { return t.stamp[tile] == t.now - 1u; }
 // Whether this frame's deposits may have reached tile `tile`: elsewhere the sum is zero.
 BLEEDSIM_HD inline bool stamped_now(const SplatTiles& t, int tile) { return t.stamp[tile] == t.now; }
+// Whether the frame before's may have (and this frame's not): its film may be other than zero.
+BLEEDSIM_HD inline bool stamped_before(const SplatTiles& t, int tile) { return t.stamp[tile] == t.now - 1u; }
 
 // The splat's constants for a run, made on the host.
 struct SplatModel {
@@ -84,10 +87,13 @@ struct SplatArgs {
   const std::uint32_t* age;
   int capacity;
   PixelGrid grid;
-  std::uint64_t* units;     // grid.width × grid.height: the sum, in kSplatUnitMm
+  std::uint64_t* units;     // grid.width × grid.height: the sum, in kSplatUnitMm; all zero between frames
   float* thickness_mm;      // the same, in mm
   SplatTiles tiles;         // where the sum may be other than zero
   SurfaceMap surface = {};  // a tissue mesh's maps; empty on the flat panel
+  // In a scene with [blur], the blur's first pass (its film is thickness_mm): the film, once
+  // converted, downsampled in the same pass, to BlurDownsample's bytes. None while `low` is null.
+  BlurArgs downsample = {};
 };
 
 // The footprint's shape at squared distance d2: 1 at the centre, 0 (with zero slope) at R.
@@ -222,15 +228,17 @@ BLEEDSIM_HD inline float thickness_from_units(std::uint64_t units) { return floa
 
 // Pixel p's film, in mm: its sum converted, or zero where this frame's deposits did not reach
 // (`reached` false: the sum there is zero, and is not read); on a mesh, over the pixel's area on the
-// surface. The twins convert a tile at a time, asking its stamp once.
+// surface. The twins convert a tile at a time, asking its stamp once, and set each sum they read
+// back to zero.
 BLEEDSIM_HD inline float film_mm(const SplatArgs& a, std::size_t p, bool reached) {
   const float film = reached ? thickness_from_units(a.units[p]) : 0.0f;
   return curved(a.surface) ? film / area_stretch(frame_of(a.surface, p)) : film;
 }
 
-// The stage's twins: clear the tiles the frame before stamped, deposit every live particle (a loop
-// on the CPU, integer atomics on the GPU), then convert the sum to millimetres. Each call is a
-// frame: the caller gives each the stamp after the last one's.
+// The stage's twins: deposit every live particle (a loop on the CPU, integer atomics on the GPU),
+// then convert the sum to millimetres, leaving it zero (and downsample the film, when asked). Each
+// call is a frame: the caller zeroes the sum before the first and gives each call the stamp after
+// the last one's.
 void cpu_twin(const SplatArgs& args, int threads);
 void cuda_twin(const SplatArgs& args);
 

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "core/physics/blur.h"
 #include "core/physics/trail.h"
 #include "core/runtime/buffer.h"
 #include "core/runtime/scene.h"
@@ -52,6 +53,9 @@ struct State {
   // The trail's pass for the frame being computed, which the blend runs in its own pass over the
   // same pixels (TrailThenBlend): set by the trail stage, taken by the blend stage.
   std::optional<TrailPixel> trail_pass;
+  // The blur's first pass, which the splat runs in its conversion's pass (SplatArgs::downsample):
+  // set by the blur stage when it is built; the blur stage then runs the passes after it.
+  std::optional<BlurArgs> film_downsample;
 
   Field* find(const std::string& name);
   const Field* find(const std::string& name) const;

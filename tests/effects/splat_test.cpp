@@ -47,6 +47,9 @@ struct Film {
     stamps.resize(splat_tile_count(args.grid));
     args.tiles = {stamps.data(), splat_tiles_across(args.grid), 1u};
     cpu_twin(args, 2);
+    // The twin leaves its sum zero for the next frame: the sum itself, as it added it up.
+    for (int slot = 0; slot < args.capacity; ++slot)
+      splat_particle(args, slot, [&](std::size_t p, std::uint64_t u) { units[p] += u; }, [](int) {});
   }
   double pixel_mm() const { return domain.width_mm / domain.width_px; }
   double pixel_area_mm2() const { return pixel_mm() * pixel_mm(); }

@@ -1,6 +1,8 @@
-// The splat clears and reads back only the tiles its deposits reach (core/physics/splat.h): frame
-// after frame, while the blood moves from tile to tile, the sum and the film must be those of the
-// same particles summed afresh into a zeroed panel, on both backends, byte for byte.
+// The splat reads back only the tiles its deposits reach, and leaves their sums zero (core/physics/
+// splat.h): frame after frame, while the blood moves from tile to tile, the film must be that of the
+// same particles summed afresh into a zeroed panel, on both backends, byte for byte, the sum zero
+// again after each frame; and the film the splat downsamples in its own pass, the blur's
+// downsample of that film.
 #include <gtest/gtest.h>
 
 #include <cstdint>
@@ -19,7 +21,8 @@ namespace {
 struct Case {
   BackendChoice::Want backend;
   float radius_mm;      // 0.2: footprints of some 8 × 10 pixels; 0.01: none reaches a pixel centre
-  std::uint32_t first;  // the stamp the frame before the first would have had
+  std::uint32_t first;  // the stamp every tile has before the first frame, and the frame before's
+  int factor;           // the blur's downsample, done in the splat's pass (0: none)
 };
 
 class SplatTiles : public testing::TestWithParam<Case> {};
@@ -71,9 +74,7 @@ TEST_P(SplatTiles, FrameAfterFrameTheFilmIsThatOfAFreshSum) {
                age = backend->allocate(kParticles * sizeof(std::uint32_t)),
                units = backend->allocate(pixels * sizeof(std::uint64_t)), film = backend->allocate(pixels * sizeof(float)),
                stamps = backend->allocate(splat_tile_count(a.grid) * sizeof(std::uint32_t));
-  // Whatever the sum held before the first frame goes: here, not zeros.
-  const std::vector<std::uint64_t> litter(pixels, 0xa5a5a5a5a5a5u);
-  backend->upload(units.data(), litter.data(), units.bytes());
+  backend->upload(units.data(), std::vector<std::uint64_t>(pixels, 0u).data(), units.bytes());
   const std::vector<std::uint32_t> unstamped(splat_tile_count(a.grid), c.first);
   backend->upload(stamps.data(), unstamped.data(), stamps.bytes());
   a.position = position.as<const float>();
@@ -81,6 +82,18 @@ TEST_P(SplatTiles, FrameAfterFrameTheFilmIsThatOfAFreshSum) {
   a.units = units.as<std::uint64_t>();
   a.thickness_mm = film.as<float>();
   a.tiles = {stamps.as<std::uint32_t>(), splat_tiles_across(a.grid), c.first};
+  Buffer low;
+  if (c.factor > 0) {
+    BlurArgs& b = a.downsample;
+    b.width = domain.width_px;
+    b.height = domain.height_px;
+    b.factor = c.factor;
+    b.low_width = (b.width + c.factor - 1) / c.factor;
+    b.low_height = (b.height + c.factor - 1) / c.factor;
+    low = backend->allocate(std::size_t(b.low_width) * b.low_height * sizeof(float));
+    b.film = a.thickness_mm;
+    b.low = low.as<float>();
+  }
 
   std::vector<float> xy;
   std::vector<std::uint32_t> ages;
@@ -106,8 +119,17 @@ TEST_P(SplatTiles, FrameAfterFrameTheFilmIsThatOfAFreshSum) {
     std::vector<float> got_film(pixels);
     backend->download(got_units.data(), units.data(), units.bytes());
     backend->download(got_film.data(), film.data(), film.bytes());
-    EXPECT_EQ(got_units, expected_units);
+    EXPECT_EQ(got_units, std::vector<std::uint64_t>(pixels, 0u)) << "the sum must be left zero for the next frame";
     EXPECT_EQ(0, std::memcmp(got_film.data(), expected_film.data(), film.bytes()));
+    if (c.factor > 0) {
+      const BlurArgs& b = a.downsample;
+      std::vector<float> expected_low, got_low(low.bytes() / sizeof(float));
+      for (int j = 0; j < b.low_height; ++j)
+        for (int i = 0; i < b.low_width; ++i)
+          expected_low.push_back(block_mean_of(b, i, j, [&](int x, int y) { return expected_film[std::size_t(y) * b.width + x]; }));
+      backend->download(got_low.data(), low.data(), low.bytes());
+      EXPECT_EQ(0, std::memcmp(got_low.data(), expected_low.data(), low.bytes()));
+    }
     std::size_t holding = 0;
     for (const std::uint64_t u : expected_units) holding += u != 0;
     if (f == 3) EXPECT_EQ(holding, 0u) << "every particle is dead in frame 3";
@@ -115,19 +137,22 @@ TEST_P(SplatTiles, FrameAfterFrameTheFilmIsThatOfAFreshSum) {
   }
 }
 
-// Stamps from 0 (as a stage starts) and across their wrap from 2³² − 1 to 0.
-INSTANTIATE_TEST_SUITE_P(Backends, SplatTiles,
-                         testing::Values(Case{BackendChoice::Want::cpu, 0.2f, 0u},
-                                         Case{BackendChoice::Want::cpu, 0.01f, 0u},
-                                         Case{BackendChoice::Want::cpu, 0.2f, 0xfffffffcu},
-                                         Case{BackendChoice::Want::cuda, 0.2f, 0u},
-                                         Case{BackendChoice::Want::cuda, 0.01f, 0u},
-                                         Case{BackendChoice::Want::cuda, 0.2f, 0xfffffffcu}),
-                         [](const testing::TestParamInfo<Case>& info) {
-                           const Case& c = info.param;
-                           return std::string(c.backend == BackendChoice::Want::cpu ? "cpu" : "cuda") +
-                                  (c.radius_mm < 0.1f ? "_small" : "") + (c.first != 0u ? "_wrapping" : "");
-                         });
+// Stamps from 0 (as a stage starts) and across their wrap from 2³² − 1 to 0; each downsample factor,
+// whose blocks the panel's 150 × 97 pixels cut short at its edges (but at factor 1).
+std::vector<Case> cases() {
+  std::vector<Case> all;
+  for (const BackendChoice::Want backend : {BackendChoice::Want::cpu, BackendChoice::Want::cuda})
+    for (const Case& c : {Case{backend, 0.2f, 0u, 0}, Case{backend, 0.01f, 0u, 2}, Case{backend, 0.2f, 0xfffffffcu, 4},
+                          Case{backend, 0.2f, 0u, 1}, Case{backend, 0.2f, 0u, 2}})
+      all.push_back(c);
+  return all;
+}
+
+INSTANTIATE_TEST_SUITE_P(Backends, SplatTiles, testing::ValuesIn(cases()), [](const testing::TestParamInfo<Case>& info) {
+  const Case& c = info.param;
+  return std::string(c.backend == BackendChoice::Want::cpu ? "cpu" : "cuda") + (c.radius_mm < 0.1f ? "_small" : "") +
+         (c.first != 0u ? "_wrapping" : "") + (c.factor > 0 ? "_downsample" + std::to_string(c.factor) : "");
+});
 
 }  // namespace
 }  // namespace bleedsim
