@@ -1,10 +1,10 @@
 #include "core/effects/splat_stage.h"
 
+#include <vector>
+
 #include "core/effects/particle_model.h"
 #include "core/effects/surface_stage.h"
 #include "core/physics/splat.h"
-
-#include <vector>
 
 namespace bleedsim {
 namespace {
@@ -48,7 +48,8 @@ SplatStage::SplatStage(const StageKind& kind, const Scene& scene, State& state, 
 
 MemoryParts SplatStage::memory_for(const Scene& scene) {
   return {scene.domain.memory(sizeof(std::uint64_t) + sizeof(float)),
-          {"scene.width_px", "the splat's tile stamps", Count(splat_tile_count(scene.domain.grid())) * sizeof(std::uint32_t)}};
+          {"scene.width_px", "the splat's tile stamps",
+           Count(splat_tile_count(scene.domain.grid())) * sizeof(std::uint32_t)}};
 }
 
 void SplatStage::run(const Scene&, State& state, Backend& backend) {

@@ -126,7 +126,8 @@ TEST_P(SplatTiles, FrameAfterFrameTheFilmIsThatOfAFreshSum) {
       std::vector<float> expected_low, got_low(low.bytes() / sizeof(float));
       for (int j = 0; j < b.low_height; ++j)
         for (int i = 0; i < b.low_width; ++i)
-          expected_low.push_back(block_mean_of(b, i, j, [&](int x, int y) { return expected_film[std::size_t(y) * b.width + x]; }));
+          expected_low.push_back(
+              block_mean_of(b, i, j, [&](int x, int y) { return expected_film[std::size_t(y) * b.width + x]; }));
       backend->download(got_low.data(), low.data(), low.bytes());
       EXPECT_EQ(0, std::memcmp(got_low.data(), expected_low.data(), low.bytes()));
     }
