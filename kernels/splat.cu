@@ -19,10 +19,16 @@ struct TilePixel {
   std::size_t index;
 };
 
+// The tile's first column and row, in units of `scale` pixels (1: the panel's; the factor: the
+// downsampled image's).
+__device__ int2 tile_origin(const SplatArgs& a, int tile, int scale = 1) {
+  return {(tile % a.tiles.across) * (kSplatTilePx / scale), (tile / a.tiles.across) * (kSplatTilePx / scale)};
+}
+
 __device__ TilePixel tile_pixel(const SplatArgs& a, int tile, int n) {
   const int k = threadIdx.x + n * kThreads;
-  const int i = (tile % a.tiles.across) * kSplatTilePx + k % kSplatTilePx;
-  const int j = (tile / a.tiles.across) * kSplatTilePx + k / kSplatTilePx;
+  const int2 origin = tile_origin(a, tile);
+  const int i = origin.x + k % kSplatTilePx, j = origin.y + k / kSplatTilePx;
   return {i, j, i < a.grid.width && j < a.grid.height, std::size_t(j) * a.grid.width + i};
 }
 
@@ -48,9 +54,8 @@ __global__ void deposit_kernel(SplatArgs a) {
 template <int Factor>
 __global__ void film_kernel(SplatArgs a) {
   const int tile = blockIdx.x;
-  const bool reached = stamped_now(a.tiles, tile);
-  if (!reached && !curved(a.surface)) {  // a film of zeros: the whole block leaves here together
-    if (stamped_before(a.tiles, tile))
+  if (film_is_zero(a, tile)) {  // the whole block leaves here together
+    if (!film_in_place(a, tile))
 #pragma unroll
       for (int n = 0; n < kTilePixelsPerThread; ++n) {
         const TilePixel q = tile_pixel(a, tile, n);
@@ -60,14 +65,15 @@ __global__ void film_kernel(SplatArgs a) {
     if constexpr (Factor > 0) {
       const BlurArgs& b = a.downsample;
       constexpr int side = kSplatTilePx / Factor;
-      const int i0 = (tile % a.tiles.across) * side, j0 = (tile / a.tiles.across) * side;
+      const int2 origin = tile_origin(a, tile, Factor);
       for (int k = threadIdx.x; k < side * side; k += kThreads) {
-        const int i = i0 + k % side, j = j0 + k / side;
+        const int i = origin.x + k % side, j = origin.y + k / side;
         if (i < b.low_width && j < b.low_height) b.low[std::size_t(j) * b.low_width + i] = 0.0f;
       }
     }
     return;
   }
+  const bool reached = stamped_now(a.tiles, tile);
   float film[kTilePixelsPerThread];
 #pragma unroll
   for (int n = 0; n < kTilePixelsPerThread; ++n) {
@@ -92,13 +98,13 @@ __global__ void film_kernel(SplatArgs a) {
     BlurArgs b = a.downsample;
     b.factor = Factor;
     constexpr int side = kSplatTilePx / Factor;  // the tile's blocks a row
-    const int i0 = (tile % a.tiles.across) * kSplatTilePx, j0 = (tile / a.tiles.across) * kSplatTilePx;
+    const int2 origin = tile_origin(a, tile), low_origin = tile_origin(a, tile, Factor);
 #pragma unroll
     for (int k = threadIdx.x; k < side * side; k += kThreads) {
-      const int i = i0 / Factor + k % side, j = j0 / Factor + k / side;
+      const int i = low_origin.x + k % side, j = low_origin.y + k / side;
       if (i < b.low_width && j < b.low_height)
         b.low[std::size_t(j) * b.low_width + i] =
-            block_mean_of(b, i, j, [&](int x, int y) { return kept[y - j0][x - i0]; });
+            block_mean_of(b, i, j, [&](int x, int y) { return kept[y - origin.y][x - origin.x]; });
     }
   }
 }

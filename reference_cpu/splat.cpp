@@ -39,8 +39,8 @@ void cpu_twin(const SplatArgs& a, int threads) {
   }
   parallel_rows(a.grid.height, threads, [&](int j) {
     for_each_tile_of_row(a, j, [&](std::size_t first, std::size_t end, int tile) {
+      if (film_in_place(a, tile)) return;
       const bool reached = stamped_now(a.tiles, tile);
-      if (!reached && !curved(a.surface) && !stamped_before(a.tiles, tile)) return;  // zeros already
       for (std::size_t p = first; p < end; ++p) a.thickness_mm[p] = film_mm(a, p, reached);
       if (reached) std::fill(a.units + first, a.units + end, std::uint64_t(0));
     });

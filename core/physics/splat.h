@@ -235,6 +235,17 @@ BLEEDSIM_HD inline float film_mm(const SplatArgs& a, std::size_t p, bool reached
   return curved(a.surface) ? film / area_stretch(frame_of(a.surface, p)) : film;
 }
 
+// Whether tile `tile`'s film is all zero this frame, its sum unread: no deposit reached it, on the
+// flat panel (on a mesh a zero film is 0 over each pixel's area, which the twins compute).
+BLEEDSIM_HD inline bool film_is_zero(const SplatArgs& a, int tile) {
+  return !stamped_now(a.tiles, tile) && !curved(a.surface);
+}
+// Whether its film is in place already: zero now, and zero the frame before, whose conversion wrote
+// those zeros (only the splat writes its film).
+BLEEDSIM_HD inline bool film_in_place(const SplatArgs& a, int tile) {
+  return film_is_zero(a, tile) && !stamped_before(a.tiles, tile);
+}
+
 // The stage's twins: deposit every live particle (a loop on the CPU, integer atomics on the GPU),
 // then convert the sum to millimetres, leaving it zero (and downsample the film, when asked). Each
 // call is a frame: the caller zeroes the sum before the first and gives each call the stamp after
