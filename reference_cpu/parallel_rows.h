@@ -9,8 +9,8 @@
 namespace bleedsim {
 
 // Runs row_fn(j) for every row j in [0, rows), in contiguous bands over `threads` threads (the
-// caller's thread takes the first band; the others run on the kept workers of WorkerPool, or on
-// threads started for the loop when another thread's loop holds them). Each row is written by
+// caller's thread and the kept workers of WorkerPool take the bands as they come free; when another
+// thread's loop holds the pool, threads are started for this loop, the caller's taking the first). Each row is written by
 // exactly one thread and depends on no other row, so the bytes do not depend on the thread count.
 template <class RowFn>
 void parallel_rows(int rows, int threads, const RowFn& row_fn) {

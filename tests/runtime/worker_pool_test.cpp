@@ -1,9 +1,11 @@
 // The CPU reference's kept workers (reference_cpu/worker_pool.h) under parallel_rows: every row run
 // exactly once, whatever the thread count, from several threads at once (the pool runs one loop,
-// the others start their own threads), and a loop inside a band.
+// the others start their own threads), a loop inside a band, and loops that find the workers awake
+// or asleep.
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <thread>
 #include <vector>
 
@@ -35,6 +37,16 @@ TEST(WorkerPool, LoopsFromSeveralThreadsAtOnceEachRunEveryRow) {
     });
   for (std::thread& caller : callers) caller.join();
   EXPECT_EQ(wrong.load(), 0);
+}
+
+// Loops back to back find the workers still waiting awake for the next; after a pause of a
+// millisecond (five times the time they wait awake) they have gone to sleep and must be woken.
+TEST(WorkerPool, LoopsFindTheWorkersAwakeOrAsleepAndRunEveryRow) {
+  for (int repeat = 0; repeat < 60; ++repeat) {
+    const auto pause = std::chrono::microseconds(repeat % 3 == 0 ? 0 : repeat % 3 == 1 ? 20 : 1000);
+    std::this_thread::sleep_for(pause);
+    ASSERT_EQ(run_counts(97, 1 + repeat % 9), std::vector<int>(97, 1)) << "loop " << repeat;
+  }
 }
 
 TEST(WorkerPool, ALoopInsideABandRunsEveryRow) {
