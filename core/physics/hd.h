@@ -6,3 +6,24 @@
 #else
 #define BLEEDSIM_HD
 #endif
+
+// fmaxf and fminf, inline on the host as well. GCC calls libm for them (it may not assume away NaNs
+// and signed zeros), and such a call in the particle step's pair loop spills the pair sums to the
+// stack around it. On the host: the larger (smaller) of two numbers, the number when the other is a
+// NaN, as libm and CUDA give them; where C leaves the result open they return y for +0 against −0
+// (libm gave either zero, as GCC ordered the call's arguments) and x for two NaNs. On the GPU, CUDA's.
+BLEEDSIM_HD inline float max_float(float x, float y) {
+#if defined(__CUDA_ARCH__)
+  return fmaxf(x, y);
+#else
+  return x > y || y != y ? x : y;
+#endif
+}
+
+BLEEDSIM_HD inline float min_float(float x, float y) {
+#if defined(__CUDA_ARCH__)
+  return fminf(x, y);
+#else
+  return x < y || y != y ? x : y;
+#endif
+}

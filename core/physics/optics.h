@@ -97,7 +97,7 @@ BLEEDSIM_HD inline float reflected_to_lens(const Headlight& l, float x_mm, float
     const float facing = (vz - slope_x * vx - slope_y * vy) * v_inverse * n_inverse;
     if (facing > 0.0f) relief = integer_power(facing, l.shininess) - integer_power(upright, l.shininess);
   }
-  return l.sheen * integer_power(upright, l.sheen_shininess) + l.specular * fmaxf(relief, 0.0f);
+  return l.sheen * integer_power(upright, l.sheen_shininess) + l.specular * max_float(relief, 0.0f);
 }
 
 }  // namespace bleedsim

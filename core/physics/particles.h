@@ -212,7 +212,7 @@ BLEEDSIM_HD inline int live_slot(const ParticleArgs& a, int t) {
 }
 
 BLEEDSIM_HD inline float clamp_float(float v, float low, float high) {
-  return fminf(fmaxf(v, low), high);
+  return min_float(max_float(v, low), high);
 }
 
 // ---- emit --------------------------------------------------------------------------------------
@@ -367,7 +367,7 @@ BLEEDSIM_HD inline void add_pair(const ParticleModel& m, float dx, float dy, flo
   sums->company += share;
   const float younger = float(age < other_age ? age : other_age), half_birth = 0.5f * m.birth_steps;
   if (younger < half_birth) {
-    const float half_overlap = 0.5f * fmaxf(m.diameter_mm - r, 0.0f);
+    const float half_overlap = 0.5f * max_float(m.diameter_mm - r, 0.0f);
     sums->hx += half_overlap * nx;
     sums->hy += half_overlap * ny;
     return;
@@ -375,9 +375,9 @@ BLEEDSIM_HD inline void add_pair(const ParticleModel& m, float dx, float dy, flo
   float push = 0.0f;
   if (r < m.diameter_mm) {
     const float approach = (vx - wx) * nx + (vy - wy) * ny;
-    push = fmaxf(m.stiffness * (m.diameter_mm - r) - m.damping * approach, 0.0f);
+    push = max_float(m.stiffness * (m.diameter_mm - r) - m.damping * approach, 0.0f);
   }
-  const float grown = fminf(1.0f, (younger - half_birth) / half_birth);
+  const float grown = min_float(1.0f, (younger - half_birth) / half_birth);
   const float force = grown * (push - m.cohesion * share);
   sums->ax += force * nx;
   sums->ay += force * ny;
@@ -493,7 +493,7 @@ BLEEDSIM_HD inline void integrate_particle(const ParticleArrays& p, const Partic
     vy = 0.0f;
   } else {
     const float speed = sqrtf(speed_sq);
-    const float kept = fminf(speed - held, m.max_speed) / speed;
+    const float kept = min_float(speed - held, m.max_speed) / speed;
     vx *= kept;
     vy *= kept;
   }
@@ -504,10 +504,10 @@ BLEEDSIM_HD inline void integrate_particle(const ParticleArrays& p, const Partic
   }
   float x = x0 + m.dt_s * mx + sx;
   float y = y0 + m.dt_s * my + sy;
-  if (x < m.min_x) { x = m.min_x; vx = fmaxf(vx, 0.0f); }
-  if (x > m.max_x) { x = m.max_x; vx = fminf(vx, 0.0f); }
-  if (y < m.min_y) { y = m.min_y; vy = fmaxf(vy, 0.0f); }
-  if (y > m.max_y) { y = m.max_y; vy = fminf(vy, 0.0f); }
+  if (x < m.min_x) { x = m.min_x; vx = max_float(vx, 0.0f); }
+  if (x > m.max_x) { x = m.max_x; vx = min_float(vx, 0.0f); }
+  if (y < m.min_y) { y = m.min_y; vy = max_float(vy, 0.0f); }
+  if (y > m.max_y) { y = m.max_y; vy = min_float(vy, 0.0f); }
   if (curved(m.surface) && !on_surface(m.surface, x, y)) {
     x = x0;
     y = y0;
@@ -526,7 +526,7 @@ BLEEDSIM_HD inline void integrate_particle(const ParticleArrays& p, const Partic
 // How much of a particle is still there over its last fade_steps: from 1 down to 1/fade_steps,
 // never 0 while it lives, so it fades out instead of popping.
 BLEEDSIM_HD inline float fade_alpha(const ParticleLifetime& l, std::uint32_t age) {
-  return fminf(1.0f, float(l.steps - age) / float(l.fade_steps));
+  return min_float(1.0f, float(l.steps - age) / float(l.fade_steps));
 }
 
 // The twins: one phase of a step over host memory (CPU reference) or device memory (CUDA).

@@ -36,8 +36,8 @@ struct PixelAt {
 // The pixel holding (x, y), clamped to the panel (before the conversion: float→int of out-of-range
 // values differs between CPU and GPU): its column and row, and its index.
 BLEEDSIM_HD inline PixelAt pixel_at(const PixelGrid& g, float x, float y) {
-  return {int(fminf(fmaxf(floorf(x / g.mm_per_px_x), 0.0f), float(g.width - 1))),
-          int(fminf(fmaxf(floorf(y / g.mm_per_px_y), 0.0f), float(g.height - 1)))};
+  return {int(min_float(max_float(floorf(x / g.mm_per_px_x), 0.0f), float(g.width - 1))),
+          int(min_float(max_float(floorf(y / g.mm_per_px_y), 0.0f), float(g.height - 1)))};
 }
 BLEEDSIM_HD inline std::size_t pixel_containing(const PixelGrid& g, float x, float y) {
   const PixelAt p = pixel_at(g, x, y);

@@ -107,7 +107,7 @@ BLEEDSIM_HD inline std::uint64_t weight_units(float w) { return std::uint64_t(w 
 
 // A particle's blood, V · fade, as film units in a single pixel, rounded half up.
 BLEEDSIM_HD inline std::uint64_t blood_units(const SplatModel& s, float fade) {
-  return std::uint64_t(fminf(s.particle_volume_mm3 * fade * s.units_per_mm3, kMaxDepositUnits) + 0.5f);
+  return std::uint64_t(min_float(s.particle_volume_mm3 * fade * s.units_per_mm3, kMaxDepositUnits) + 0.5f);
 }
 
 // The pixels a splat at (x, y) may reach: those whose centres lie within R, on the panel; and the

@@ -31,7 +31,7 @@ struct TrailPixel {
   BLEEDSIM_HD void operator()(int i, int j) const {
     const std::size_t p = std::size_t(j) * grid.width + i;
     const bool sucked = sweep_segments > 0 && swept(pixel_centre_x_mm(grid, i), pixel_centre_y_mm(grid, j));
-    residue_mm[p] = sucked ? 0.0f : fmaxf(residue_mm[p] * decay, residue * film_mm[p]);
+    residue_mm[p] = sucked ? 0.0f : max_float(residue_mm[p] * decay, residue * film_mm[p]);
   }
 
   // Whether (x, y) lies within the reach of a segment: its distance² to the segment's nearest point.
@@ -40,7 +40,7 @@ struct TrailPixel {
     for (int k = 0; k < sweep_segments; ++k) {
       const float* s = sweep + 4 * k;
       const float ux = s[2] - s[0], uy = s[3] - s[1], u2 = ux * ux + uy * uy;
-      const float along = u2 > 0.0f ? fminf(fmaxf(((x - s[0]) * ux + (y - s[1]) * uy) / u2, 0.0f), 1.0f) : 0.0f;
+      const float along = u2 > 0.0f ? min_float(max_float(((x - s[0]) * ux + (y - s[1]) * uy) / u2, 0.0f), 1.0f) : 0.0f;
       const float dx = x - (s[0] + along * ux), dy = y - (s[1] + along * uy);
       if (dx * dx + dy * dy <= reach_sq) return true;
     }

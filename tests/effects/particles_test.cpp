@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <cstdint>
+#include <cstring>
+#include <limits>
 #include <map>
 #include <vector>
 
@@ -123,6 +125,38 @@ TEST(CounterHash, DependsOnEveryCounterAndIsEvenlySpread) {
   EXPECT_LT(high, 1.0);
   EXPECT_LT(low, -0.999);
   EXPECT_GT(high, 0.999);
+}
+
+// ---- the host's fminf and fmaxf ----------------------------------------------------------------
+
+// min_float and max_float (core/physics/hd.h) against libm, over every pairing of signed zeros,
+// ones, a subnormal, infinities and NaNs: libm's bits wherever C fixes the result (two numbers, or a
+// NaN and a number); where it does not, y for +0 against −0 and x for two NaNs (both allowed).
+TEST(HostMinMax, GiveLibmsResultsWhereCFixesThem) {
+  const auto bits = [](float v) {
+    std::uint32_t b;
+    std::memcpy(&b, &v, sizeof b);
+    return b;
+  };
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  const std::vector<float> values = {0.0f, -0.0f, 1.0f, -1.0f, 2.5e-39f, inf, -inf, nan, -nan};
+  for (const float x : values)
+    for (const float y : values) {
+      if (x == 0.0f && y == 0.0f && std::signbit(x) != std::signbit(y)) {
+        EXPECT_EQ(bits(max_float(x, y)), bits(y)) << x << ", " << y;
+        EXPECT_EQ(bits(min_float(x, y)), bits(y)) << x << ", " << y;
+        continue;
+      }
+      if (std::isnan(x) && std::isnan(y)) {
+        EXPECT_EQ(bits(max_float(x, y)), bits(x)) << x << ", " << y;
+        EXPECT_EQ(bits(min_float(x, y)), bits(x)) << x << ", " << y;
+        continue;
+      }
+      // volatile: the library's functions, not the compiler's folding of them.
+      volatile float vx = x, vy = y;
+      EXPECT_EQ(bits(max_float(x, y)), bits(std::fmax(float(vx), float(vy)))) << x << ", " << y;
+      EXPECT_EQ(bits(min_float(x, y)), bits(std::fmin(float(vx), float(vy)))) << x << ", " << y;
+    }
 }
 
 // ---- pair forces -------------------------------------------------------------------------------
