@@ -167,6 +167,46 @@ ParticleModel pair_model() {
   return make_particle_model(scene);
 }
 
+// ---- emit --------------------------------------------------------------------------------------
+
+// Every new particle leaves from its own cut: for one cut and for many, of one to five particles
+// each, the particles of a cut's range of new ones [first_new, first_new + count) are written to
+// their ids' slots at that cut (no jitter), the cut found here by walking the cuts in turn.
+TEST(ParticleEmit, EachNewParticleLeavesFromItsOwnCut) {
+  ParticleModel m = pair_model();
+  m.jitter_mm = 0.0f;
+  m.velocity_jitter = 0.0f;
+  constexpr int kCapacity = 2048;
+  std::vector<float> position(2 * kCapacity), velocity(2 * kCapacity);
+  std::vector<std::uint32_t> age(kCapacity, kNeverUsed);
+  ParticleArgs a{};
+  a.model = m;
+  a.arrays.capacity = kCapacity;
+  a.arrays.position = position.data();
+  a.arrays.velocity = velocity.data();
+  a.arrays.age = age.data();
+  for (const int cuts : {1, 2, 3, 64, 257}) {
+    std::vector<Emitter> emitters;
+    std::uint32_t first_new = 0;
+    for (int c = 0; c < cuts; ++c) {
+      const std::uint32_t count = 1 + std::uint32_t(c * 7 % 5);
+      emitters.push_back({0.5f + 0.05f * float(c), 1.0f + 0.03f * float(c), 1000 + first_new, first_new, count});
+      first_new += count;
+    }
+    a.emitters = emitters.data();
+    a.emitter_count = cuts;
+    a.new_count = int(first_new);
+    for (int t = 0; t < a.new_count; ++t) emit_particle(a, t);
+    for (const Emitter& cut : emitters)
+      for (std::uint32_t k = 0; k < cut.count; ++k) {
+        const std::size_t slot = (cut.first_id + k) % kCapacity;
+        ASSERT_EQ(position[2 * slot], cut.x_mm) << cuts << " cuts, new particle " << cut.first_new + k;
+        ASSERT_EQ(position[2 * slot + 1], cut.y_mm) << cuts << " cuts, new particle " << cut.first_new + k;
+        ASSERT_EQ(age[slot], 0u);
+      }
+  }
+}
+
 struct Pull {
   float x = 0.0f, y = 0.0f, company = 0.0f;
 };
