@@ -54,15 +54,19 @@ bool became_ready_awake(const Ready& ready) {
 }
 }  // namespace
 
-bool WorkerPool::try_run(int bands, const std::function<void(int)>& band) {
+bool WorkerPool::try_run(int threads, int bands, const std::function<void(int)>& band) {
   if (in_band || bands > kMostBands) return false;
   std::unique_lock<std::mutex> running(running_, std::try_to_lock);
   if (!running.owns_lock()) return false;
   std::uint64_t loop;
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    while (int(workers_.size()) < bands - 1) workers_.emplace_back([this] { work(); });
+    while (int(workers_.size()) < threads - 1) {
+      const int index = int(workers_.size());
+      workers_.emplace_back([this, index] { work(index); });
+    }
     band_ = &band;
+    helpers_ = threads - 1;
     bands_done_ = 0;
     loop = (loop_of(claim_) + 1) & 0xffffffffu;
     claim_.store(loop << 32 | std::uint64_t(bands) << 16, std::memory_order_release);
@@ -94,7 +98,7 @@ void WorkerPool::take_bands(std::uint64_t loop) {
   }
 }
 
-void WorkerPool::work() {
+void WorkerPool::work(int index) {
   std::uint64_t seen = 0;
   for (;;) {
     const auto called = [&] { return stopping_.load() || loop_of(claim_.load(std::memory_order_acquire)) != seen; };
@@ -104,7 +108,8 @@ void WorkerPool::work() {
     }
     if (stopping_) return;
     seen = loop_of(claim_.load(std::memory_order_acquire));
-    take_bands(seen);
+    // A loop asks for as many threads as it was given, though the pool may have more.
+    if (index < helpers_) take_bands(seen);
   }
 }
 
