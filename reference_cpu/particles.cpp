@@ -1,7 +1,6 @@
 // The CPU reference of the particle step: loops over core/physics/particles.h. The bin is a counting
 // sort, which is stable, so it orders (cell, slot) exactly as the GPU's bin does.
 #include <algorithm>
-#include <cstring>
 #include <vector>
 
 #include "core/physics/particles.h"
@@ -10,81 +9,95 @@
 namespace bleedsim {
 namespace {
 
-// The most the per-band cell counts of a parallel bin may take: a panel of many small cells sorts on
-// one thread rather than hold a count per cell for every thread.
-constexpr std::size_t kBinCountBytes = std::size_t(64) << 20;
+// The buckets of consecutive cells the bin sorts the particles into first: few enough that each
+// band's count of every bucket is a small table, many enough for the threads to share them out.
+constexpr std::uint32_t kBinBuckets = 256;
+
+struct KeyedSlot {
+  std::uint32_t key, slot;
+};
 
 // Only the live slots are sorted, as on the GPU. Aspirated particles in the live range carry the
 // largest key, and sort after the living.
 //
-// A counting sort, stable: the live slots in ascending order are cut into bands, one a thread; each
-// band counts its slots per cell; a cell's place is then the counts of the cells before it, and
-// within the cell, of the bands before this one; each band writes its slots there in its own order.
-// So every cell holds its slots in ascending slot order, the serial sort's order, on any number of
-// threads.
+// A counting sort in two passes, each stable, so that every cell holds its slots in ascending slot
+// order (the serial sort's order) on any number of threads. The live slots in ascending order are
+// cut into bands; each band counts its slots per bucket (a run of consecutive cells); a bucket's
+// place is the counts of the buckets before it, and within it, of the bands before this one; each
+// band writes its slots there in its own order. Then each bucket, on its own, sorts its slots by
+// cell (a count per cell of its own), sets its cells' starts and gathers the sorted copies. Before,
+// every band counted every cell: 16 bands' counts of a 65,536-cell panel were four times the
+// particles' own work, and the bin ran 3× faster on 16 cores than on one.
 void bin(const ParticleArgs& a, int threads) {
   const ParticleArrays& p = a.arrays;
   const ParticleModel& m = a.model;
   const std::uint32_t cells = cell_count(m), none = sentinel_key(m);
   const int n = a.live_count;
-  const int bands = std::max(1, std::min(threads_for_particles(n, threads),
-                                         int(kBinCountBytes / (sizeof(std::uint32_t) * std::max<std::uint32_t>(cells, 1)))));
-  // counts[b · cells + c]: band b's slots in cell c, then where band b writes its next slot of c.
-  // Kept from step to step by the calling thread (the bands on other threads reach it through
-  // this reference: a thread_local named inside them would be their own).
-  static thread_local std::vector<std::uint32_t> kept_counts;
-  std::vector<std::uint32_t>& counts = kept_counts;
-  counts.resize(std::size_t(bands) * cells);
+  const std::uint32_t bucket_cells = std::uint32_t(std::max<std::uint64_t>(1, (std::uint64_t(cells) + kBinBuckets - 1) / kBinBuckets));
+  const std::uint32_t buckets = (cells + bucket_cells - 1) / bucket_cells;
+  const int workers = threads_for_particles(n, threads);
+  const int bands = workers == 1 ? 1 : std::min(n, workers * kBandsPerThread);
   const auto band_first = [&](int band) { return int(std::int64_t(n) * band / bands); };
-  parallel_rows(bands, bands, [&](int band) {
-    std::uint32_t* count = counts.data() + std::size_t(band) * cells;
-    std::fill(count, count + cells, 0u);
+  // Kept from step to step by the calling thread (the bands on other threads reach them through these
+  // references: a thread_local named inside them would be their own).
+  static thread_local std::vector<std::uint32_t> kept_counts;
+  static thread_local std::vector<KeyedSlot> kept_by_bucket;
+  // counts[band · buckets + b]: band's slots in bucket b, then where band writes its next slot of b.
+  std::vector<std::uint32_t>& counts = kept_counts;
+  std::vector<KeyedSlot>& by_bucket = kept_by_bucket;  // the living, bucket by bucket
+  counts.assign(std::size_t(bands) * buckets, 0u);
+  by_bucket.resize(std::size_t(std::max(n, 1)));
+  parallel_rows(bands, workers, [&](int band) {
+    std::uint32_t* count = counts.data() + std::size_t(band) * buckets;
     for (int t = band_first(band); t < band_first(band + 1); ++t) {
       const int slot = nth_live_slot_ascending(a, t);
       p.cell_key[slot] = cell_key_of(p, m, slot);
-      if (p.cell_key[slot] != none) ++count[p.cell_key[slot]];
+      if (p.cell_key[slot] != none) ++count[p.cell_key[slot] / bucket_cells];
     }
   });
-  // Each cell's start and end; within it, each band's first place. Cells in chunks over the threads:
-  // each chunk's total first, then their running sum, then each chunk's cells from its start.
-  const int chunks = std::max(1, std::min(threads, int(cells / 4096)));
-  const auto chunk_first = [&](int chunk) { return std::uint32_t(std::uint64_t(cells) * chunk / chunks); };
-  std::vector<std::uint32_t> chunk_start(chunks + 1, 0u);
-  parallel_rows(chunks, chunks, [&](int chunk) {
-    std::uint32_t total = 0;
+  std::vector<std::uint32_t> bucket_start(buckets + 1);
+  std::uint32_t living = 0;
+  for (std::uint32_t b = 0; b < buckets; ++b) {
+    bucket_start[b] = living;
     for (int band = 0; band < bands; ++band) {
-      const std::uint32_t* count = counts.data() + std::size_t(band) * cells;
-      for (std::uint32_t c = chunk_first(chunk); c < chunk_first(chunk + 1); ++c) total += count[c];
+      std::uint32_t& count = counts[std::size_t(band) * buckets + b];
+      const std::uint32_t in_band = count;
+      count = living;
+      living += in_band;
     }
-    chunk_start[chunk + 1] = total;
-  });
-  for (int chunk = 0; chunk < chunks; ++chunk) chunk_start[chunk + 1] += chunk_start[chunk];
-  parallel_rows(chunks, chunks, [&](int chunk) {
-    std::uint32_t at = chunk_start[chunk];
-    for (std::uint32_t c = chunk_first(chunk); c < chunk_first(chunk + 1); ++c) {
-      p.cell_start[c] = at;
-      for (int band = 0; band < bands; ++band) {
-        std::uint32_t& count = counts[std::size_t(band) * cells + c];
-        const std::uint32_t in_band = count;
-        count = at;
-        at += in_band;
-      }
-    }
-  });
-  const int living = int(chunk_start[chunks]);
-  p.cell_start[cells] = std::uint32_t(living);
-  parallel_rows(bands, bands, [&](int band) {
-    std::uint32_t* next = counts.data() + std::size_t(band) * cells;
+  }
+  bucket_start[buckets] = living;
+  parallel_rows(bands, workers, [&](int band) {
+    std::uint32_t* next = counts.data() + std::size_t(band) * buckets;
     for (int t = band_first(band); t < band_first(band + 1); ++t) {
       const int slot = nth_live_slot_ascending(a, t);
-      if (p.cell_key[slot] == none) continue;
-      const std::uint32_t to = next[p.cell_key[slot]]++;
-      p.sorted_key[to] = p.cell_key[slot];
-      p.sorted_slot[to] = std::uint32_t(slot);
+      const std::uint32_t key = p.cell_key[slot];
+      if (key != none) by_bucket[next[key / bucket_cells]++] = {key, std::uint32_t(slot)};
     }
   });
+  parallel_rows(int(buckets), workers, [&](int b) {
+    static thread_local std::vector<std::uint32_t> cell_next;
+    const std::uint32_t first_cell = std::uint32_t(b) * bucket_cells;
+    const std::uint32_t bucket_cell_count = std::min(bucket_cells, cells - first_cell);
+    cell_next.assign(bucket_cell_count, 0u);
+    for (std::uint32_t k = bucket_start[b]; k < bucket_start[b + 1]; ++k) ++cell_next[by_bucket[k].key - first_cell];
+    std::uint32_t at = bucket_start[b];
+    for (std::uint32_t c = 0; c < bucket_cell_count; ++c) {
+      p.cell_start[first_cell + c] = at;
+      const std::uint32_t in_cell = cell_next[c];
+      cell_next[c] = at;
+      at += in_cell;
+    }
+    for (std::uint32_t k = bucket_start[b]; k < bucket_start[b + 1]; ++k) {
+      const KeyedSlot living_one = by_bucket[k];
+      const std::uint32_t to = cell_next[living_one.key - first_cell]++;
+      p.sorted_key[to] = living_one.key;
+      p.sorted_slot[to] = living_one.slot;
+      gather_sorted(p, int(to));
+    }
+  });
+  p.cell_start[cells] = living;
   std::fill(p.sorted_key + living, p.sorted_key + n, none);
-  parallel_rows(living, threads_for_particles(living, threads), [&](int i) { gather_sorted(p, i); });
 }
 
 }  // namespace
