@@ -33,7 +33,8 @@ void bin(const ParticleArgs& a, int threads) {
   const ParticleModel& m = a.model;
   const std::uint32_t cells = cell_count(m), none = sentinel_key(m);
   const int n = a.live_count;
-  const std::uint32_t bucket_cells = std::uint32_t(std::max<std::uint64_t>(1, (std::uint64_t(cells) + kBinBuckets - 1) / kBinBuckets));
+  const std::uint32_t bucket_cells =
+      std::uint32_t(std::max<std::uint64_t>(1, (std::uint64_t(cells) + kBinBuckets - 1) / kBinBuckets));
   const std::uint32_t buckets = (cells + bucket_cells - 1) / bucket_cells;
   const int workers = threads_for_particles(n, threads);
   const int bands = workers == 1 ? 1 : std::min(n, workers * kBandsPerThread);
@@ -80,7 +81,8 @@ void bin(const ParticleArgs& a, int threads) {
     const std::uint32_t first_cell = std::uint32_t(b) * bucket_cells;
     const std::uint32_t bucket_cell_count = std::min(bucket_cells, cells - first_cell);
     cell_next.assign(bucket_cell_count, 0u);
-    for (std::uint32_t k = bucket_start[b]; k < bucket_start[b + 1]; ++k) ++cell_next[by_bucket[k].key - first_cell];
+    for (std::uint32_t k = bucket_start[b]; k < bucket_start[b + 1]; ++k)
+      ++cell_next[by_bucket[k].key - first_cell];
     std::uint32_t at = bucket_start[b];
     for (std::uint32_t c = 0; c < bucket_cell_count; ++c) {
       p.cell_start[first_cell + c] = at;
