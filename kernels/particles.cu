@@ -19,6 +19,7 @@
 #include <cstddef>
 #include <cstring>
 #include <memory>
+#include <vector>
 
 #include "core/physics/particles.h"
 #include "kernels/cuda_check.h"
@@ -308,26 +309,53 @@ class StepGraph final : public TwinCache {
       throw;
     }
     BLEEDSIM_CUDA_CHECK(cudaStreamEndCapture(stream_, &graph));
-    // A graph of the same launches with other sizes or buffers updates the one there is, at a
-    // fraction of making a new one; other launches (CUB picks its kernels by the items) need one.
-    cudaGraphExecUpdateResultInfo update{};
-    cudaError_t made = exec_ ? cudaGraphExecUpdate(exec_, graph, &update) : cudaErrorGraphExecUpdateFailure;
-    if (made != cudaSuccess) {
-      cudaGetLastError();  // a failed update is an answer, not an error to carry
+    // A graph of the same kernels in the same order, with other sizes or buffers, updates the one
+    // there is, at a fraction of making a new one; other kernels (another number of steps, a phase
+    // with nothing to do, CUB's choice for other items) need a new one. Which it is, is decided
+    // here rather than by a failed update, which tools such as compute-sanitizer report as errors.
+    const std::unique_ptr<CUgraph_st, cudaError_t (*)(cudaGraph_t)> owned(graph, cudaGraphDestroy);
+    std::vector<const void*> kernels = kernels_of(graph);
+    bool updated = false;
+    if (exec_ && kernels == kernels_) {
+      cudaGraphExecUpdateResultInfo update{};
+      updated = cudaGraphExecUpdate(exec_, graph, &update) == cudaSuccess;
+      if (!updated) cudaGetLastError();  // not expected of the same kernels; a new graph will do
+    }
+    if (!updated) {
+      kernels_.clear();
       if (exec_) cudaGraphExecDestroy(exec_);
       exec_ = nullptr;
-      made = cudaGraphInstantiate(&exec_, graph, 0);
+      const cudaError_t made = cudaGraphInstantiate(&exec_, graph, 0);
       if (made != cudaSuccess) exec_ = nullptr;
+      BLEEDSIM_CUDA_CHECK(made);
     }
-    cudaGraphDestroy(graph);
-    BLEEDSIM_CUDA_CHECK(made);
+    kernels_ = std::move(kernels);
     shape_ = shape;
+  }
+
+  // The kernel of each node of a captured graph (a stream's capture is a chain, in launch order).
+  static std::vector<const void*> kernels_of(cudaGraph_t graph) {
+    std::size_t count = 0;
+    BLEEDSIM_CUDA_CHECK(cudaGraphGetNodes(graph, nullptr, &count));
+    std::vector<cudaGraphNode_t> nodes(count);
+    BLEEDSIM_CUDA_CHECK(cudaGraphGetNodes(graph, nodes.data(), &count));
+    std::vector<const void*> kernels;
+    kernels.reserve(count);
+    for (cudaGraphNode_t node : nodes) {
+      cudaGraphNodeType type{};
+      BLEEDSIM_CUDA_CHECK(cudaGraphNodeGetType(node, &type));
+      cudaKernelNodeParams params{};
+      if (type == cudaGraphNodeTypeKernel) BLEEDSIM_CUDA_CHECK(cudaGraphKernelNodeGetParams(node, &params));
+      kernels.push_back(params.func);
+    }
+    return kernels;
   }
 
   cudaStream_t stream_ = nullptr;
   Staging staging_[2];
   int next_ = 0;
   cudaGraphExec_t exec_ = nullptr;
+  std::vector<const void*> kernels_;  // exec_'s
   GraphShape shape_;
 };
 
