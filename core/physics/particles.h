@@ -260,10 +260,10 @@ BLEEDSIM_HD inline void emit_particle(const ParticleArgs& a, int t) {
     x = clamp_float(from.x_mm, m.min_x, m.max_x);
     y = clamp_float(from.y_mm, m.min_y, m.max_y);
   }
-  a.arrays.position[2 * slot] = x;
-  a.arrays.position[2 * slot + 1] = y;
-  a.arrays.velocity[2 * slot] = m.velocity_x * from.speed_scale + m.velocity_jitter * jitter(2);
-  a.arrays.velocity[2 * slot + 1] = m.velocity_y * from.speed_scale + m.velocity_jitter * jitter(3);
+  set_pair(a.arrays.position, slot, {x, y});
+  set_pair(a.arrays.velocity, slot,
+           {m.velocity_x * from.speed_scale + m.velocity_jitter * jitter(2),
+            m.velocity_y * from.speed_scale + m.velocity_jitter * jitter(3)});
   a.arrays.age[slot] = 0;
 }
 
@@ -283,8 +283,9 @@ BLEEDSIM_HD inline int cell_coordinate(float v_mm, float cell_mm, int cells) {
 
 BLEEDSIM_HD inline std::uint32_t cell_key_of(const ParticleArrays& p, const ParticleModel& m, int slot) {
   if (!is_alive(m, p.age[slot])) return sentinel_key(m);
-  const int cx = cell_coordinate(p.position[2 * slot], m.cell_mm, m.cells_x);
-  const int cy = cell_coordinate(p.position[2 * slot + 1], m.cell_mm, m.cells_y);
+  const FloatPair at = pair_at(p.position, std::size_t(slot));
+  const int cx = cell_coordinate(at.x, m.cell_mm, m.cells_x);
+  const int cy = cell_coordinate(at.y, m.cell_mm, m.cells_y);
   return std::uint32_t(cy) * std::uint32_t(m.cells_x) + std::uint32_t(cx);
 }
 
@@ -299,10 +300,8 @@ BLEEDSIM_HD inline int nth_live_slot_ascending(const ParticleArgs& a, int n) {
 // The sorted copies collide reads, so no thread reads a slot another thread is writing.
 BLEEDSIM_HD inline void gather_sorted(const ParticleArrays& p, int i) {
   const std::uint32_t slot = p.sorted_slot[i];
-  p.sorted_position[2 * i] = p.position[2 * slot];
-  p.sorted_position[2 * i + 1] = p.position[2 * slot + 1];
-  p.sorted_velocity[2 * i] = p.velocity[2 * slot];
-  p.sorted_velocity[2 * i + 1] = p.velocity[2 * slot + 1];
+  set_pair(p.sorted_position, std::size_t(i), pair_at(p.position, slot));
+  set_pair(p.sorted_velocity, std::size_t(i), pair_at(p.velocity, slot));
   p.sorted_age[i] = p.age[slot];
 }
 
@@ -405,10 +404,8 @@ BLEEDSIM_HD inline void finish_pair_sums(const ParticleArrays& p, const Particle
     hx *= scale;
     hy *= scale;
   }
-  p.acceleration[2 * slot] = sums.ax;
-  p.acceleration[2 * slot + 1] = sums.ay;
-  p.shift[2 * slot] = hx;
-  p.shift[2 * slot + 1] = hy;
+  set_pair(p.acceleration, slot, {sums.ax, sums.ay});
+  set_pair(p.shift, slot, {hx, hy});
   p.on_edge[slot] = sums.sx * sums.sx + sums.sy * sums.sy > m.edge_openness * m.edge_openness ||
                     sums.company < m.edge_company;
 }
@@ -435,8 +432,8 @@ BLEEDSIM_HD inline void collide_particle(const ParticleArrays& p, const Particle
   const int cx = int(key % std::uint32_t(m.cells_x));
   const int cy = int(key / std::uint32_t(m.cells_x));
   const std::uint32_t slot = p.sorted_slot[i];
-  const float px = p.sorted_position[2 * i], py = p.sorted_position[2 * i + 1];
-  const float vx = p.sorted_velocity[2 * i], vy = p.sorted_velocity[2 * i + 1];
+  const auto [px, py] = pair_at(p.sorted_position, std::size_t(i));
+  const auto [vx, vy] = pair_at(p.sorted_velocity, std::size_t(i));
   const std::uint32_t age = p.sorted_age[i];
   const int x0 = cx > 0 ? cx - 1 : 0, x1 = cx + 1 < m.cells_x ? cx + 1 : cx;
   const SurfaceFrame own = curved(m.surface) ? frame_at(m.surface, px, py) : SurfaceFrame{1.0f, 0.0f, 1.0f};
@@ -446,14 +443,14 @@ BLEEDSIM_HD inline void collide_particle(const ParticleArrays& p, const Particle
     const SortedRun run = row_run(p, m, ny, x0, x1);
     for (std::uint32_t j = run.begin; j < run.end; ++j) {
       if (j == std::uint32_t(i)) continue;
-      const float qx = p.sorted_position[2 * j], qy = p.sorted_position[2 * j + 1];
+      const auto [qx, qy] = pair_at(p.sorted_position, j);
       float dx = px - qx, dy = py - qy;
       if (curved(m.surface)) to_surface(pair_frame(own, frame_at(m.surface, qx, qy)), dx, dy, &dx, &dy);
       const float r2 = dx * dx + dy * dy;
       if (r2 >= m.range_sq) continue;
       const std::uint32_t other = r2 > 0.0f ? 0u : p.sorted_slot[j];
-      add_pair(m, dx, dy, vx, vy, age, slot, p.sorted_velocity[2 * j], p.sorted_velocity[2 * j + 1],
-               p.sorted_age[j], other, &sums);
+      const FloatPair w = pair_at(p.sorted_velocity, j);
+      add_pair(m, dx, dy, vx, vy, age, slot, w.x, w.y, p.sorted_age[j], other, &sums);
     }
   }
   finish_pair_sums(p, m, slot, sums);
@@ -485,7 +482,7 @@ BLEEDSIM_HD inline void integrate_particle(const ParticleArrays& p, const Partic
     }
     return;
   }
-  const float x0 = p.position[2 * slot], y0 = p.position[2 * slot + 1];
+  const auto [x0, y0] = pair_at(p.position, std::size_t(slot));
   float gx = m.gravity_x, gy = m.gravity_y;
   SurfaceFrame frame{1.0f, 0.0f, 1.0f};
   if (curved(m.surface)) {
@@ -494,8 +491,9 @@ BLEEDSIM_HD inline void integrate_particle(const ParticleArrays& p, const Partic
     gx = m.surface.gravity[kSurfaceGravityChannels * texel];
     gy = m.surface.gravity[kSurfaceGravityChannels * texel + 1];
   }
-  float vx = (p.velocity[2 * slot] + m.dt_s * (gx + p.acceleration[2 * slot])) / m.drag_divisor;
-  float vy = (p.velocity[2 * slot + 1] + m.dt_s * (gy + p.acceleration[2 * slot + 1])) / m.drag_divisor;
+  const FloatPair v0 = pair_at(p.velocity, std::size_t(slot)), a = pair_at(p.acceleration, std::size_t(slot));
+  float vx = (v0.x + m.dt_s * (gx + a.x)) / m.drag_divisor;
+  float vy = (v0.y + m.dt_s * (gy + a.y)) / m.drag_divisor;
   const float speed_sq = vx * vx + vy * vy;
   const float held = grip(m, p.on_edge[slot]) * m.dt_s;
   if (speed_sq <= held * held) {
@@ -507,7 +505,8 @@ BLEEDSIM_HD inline void integrate_particle(const ParticleArrays& p, const Partic
     vx *= kept;
     vy *= kept;
   }
-  float mx = vx, my = vy, sx = p.shift[2 * slot], sy = p.shift[2 * slot + 1];
+  const FloatPair shift = pair_at(p.shift, std::size_t(slot));
+  float mx = vx, my = vy, sx = shift.x, sy = shift.y;
   if (curved(m.surface)) {
     to_panel(frame, vx, vy, &mx, &my);
     to_panel(frame, sx, sy, &sx, &sy);
@@ -524,10 +523,8 @@ BLEEDSIM_HD inline void integrate_particle(const ParticleArrays& p, const Partic
     vx = 0.0f;
     vy = 0.0f;
   }
-  p.position[2 * slot] = x;
-  p.position[2 * slot + 1] = y;
-  p.velocity[2 * slot] = vx;
-  p.velocity[2 * slot + 1] = vy;
+  set_pair(p.position, std::size_t(slot), {x, y});
+  set_pair(p.velocity, std::size_t(slot), {vx, vy});
   p.age[slot] = age + 1;
 }
 
