@@ -1,6 +1,7 @@
 // The particle step's phases against the 1 ms haptic tick, in the state a running scene spends its
 // time in: a settled pile. Emit, bin (cell keys, stable sort, cell ranges, sorted copies), collide,
-// integrate and the whole step (emit + bin + collide + integrate); the instrument's part of a step
+// integrate and the whole step as a scene runs it (emit + bin + collide + integrate; on CUDA fused
+// into four launches and CUB's scan); the instrument's part of a step
 // (core/effects/instrument.h) with its tip in the pile: the suction at the default flow's quota and
 // at the whole reach, the contact of a tip moving through it, and the step with both; on CUDA at
 // 65,536, 1,048,576 and 4,194,304 particles and on the CPU reference at 65,536; and the grid step
@@ -122,7 +123,9 @@ struct Pile {
   int threads;  // the CPU all-pairs baseline's, as many as the CPU backend's
   Scene scene;
   ParticleArgs args{};
-  Buffer position, velocity, age, scratch, emitters;
+  Buffer position, velocity, age, scratch, emitters, plan;
+  std::vector<Emitter> cuts;              // the emit burst's, on the host as a scene plans them
+  std::unique_ptr<TwinCache> step_cache;  // what a backend keeps between whole steps
   Buffer settled_position, settled_velocity, settled_age;
   std::string problem;  // why it cannot be measured (empty when it can)
   int settle_steps = 0;
@@ -177,7 +180,6 @@ struct Pile {
     // The burst: kPerEmitter new particles from each of kEmitters cuts spread over the free space
     // above the pile (ids N, N + 1, …, so they overwrite the oldest slots, the bottom of the pile).
     const int burst = kEmitters * kPerEmitter;
-    std::vector<Emitter> cuts;
     for (int e = 0; e < kEmitters; ++e) {
       const int first = burst * e / kEmitters, next = burst * (e + 1) / kEmitters;
       cuts.push_back({float(scene.domain.width_mm * (2 * e + 1) / (2 * kEmitters)),
@@ -189,6 +191,7 @@ struct Pile {
     args.emitters = emitters.as<const Emitter>();
     args.emitter_count = kEmitters;
     args.new_count = burst;
+    plan = backend->allocate(sizeof(ParticleStep));
 
     settle();
     settled_position = backend->allocate(pairs);
@@ -216,7 +219,18 @@ struct Pile {
   void bin() { backend->run("particles", ParticlePhase::bin, args); }
   void collide() { backend->run("particles", ParticlePhase::collide, args); }
   void integrate() { backend->run("particles", ParticlePhase::integrate, args); }
-  void step() { emit(); bin(); collide(); integrate(); }
+  // The whole step, as a scene's sub-step runs it (core/effects/particle_stage.cpp): on CUDA its
+  // phases fused into four launches and CUB's scan, the same bytes as the four phases one by one.
+  void step() {
+    ParticleStep planned{};  // the ring is full: the live range is the same before emission and after
+    planned.step = args.step;
+    planned.emitter_count = args.emitter_count;
+    planned.new_count = args.new_count;
+    planned.emit_first_live_slot = planned.first_live_slot = args.first_live_slot;
+    planned.emit_live_count = planned.live_count = args.live_count;
+    backend->run("particles", ParticleSteps{args, &planned, 1, cuts.data(), int(cuts.size()),
+                                            plan.as<ParticleStep>(), emitters.as<Emitter>(), &step_cache});
+  }
   void all_pairs_collide() {
     if (backend->kind() == BackendKind::cpu) {
       all_pairs_collide_cpu(args.arrays, args.model, threads);

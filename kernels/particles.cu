@@ -8,6 +8,11 @@
 // stable counting sort leaves them, whatever order the atomics ran in. The counts go back to zero
 // for the cells that were touched, so no step clears the whole table.
 //
+// A step in a scene runs whole, in four launches and CUB's scan: the thread that counts a slot
+// into its cell first emits the new particle the slot receives (or ages it, if the suction took
+// it), and the thread that sums a living particle's pairs then moves it. The phases on their own
+// (the benchmarks', the tests') launch one by one.
+//
 // A frame's steps run as one CUDA graph: hundreds of steps of small launches cost their launch
 // overhead, not their arithmetic, when the host issues each one. The graph's launches read their
 // step's arguments from the step list on the device, so the same graph serves every frame whose
@@ -88,12 +93,21 @@ BinScratch bin_scratch(const ParticleArrays& p, std::uint32_t cells) {
 }
 
 // The t-th live slot (ascending) counts itself into its cell; the dead and aspirated count nowhere.
-template <class Args>
+// In a whole step the thread that owns the slot first emits the new particle it receives, or ages
+// it if the suction took it (the step's emit, and the integrate of the dead, in the bin's launch).
+template <class Args, bool kWholeStep>
 __global__ void count_kernel(Args args, BinScratch b) {
   const ParticleArgs a = args.at(ParticlePhase::bin);
   const int t = blockIdx.x * blockDim.x + threadIdx.x;
   if (t >= a.live_count) return;
-  const std::uint32_t key = cell_key_of(a.arrays, a.model, nth_live_slot_ascending(a, t));
+  const int slot = nth_live_slot_ascending(a, t);
+  if (kWholeStep) {
+    const ParticleArgs emitting = args.at(ParticlePhase::emit);
+    const int e = new_particle_in(emitting, std::size_t(slot));
+    if (e < emitting.new_count) emit_particle(emitting, e);
+    else age_aspirated(a.arrays, a.model, slot);
+  }
+  const std::uint32_t key = cell_key_of(a.arrays, a.model, slot);
   a.arrays.cell_key[t] = key;
   if (key != sentinel_key(a.model)) b.arrival[t] = atomicAdd(&b.count[key], 1u);
 }
@@ -133,11 +147,16 @@ __global__ void place_kernel(Args args, BinScratch b) {
   gather_sorted(p, int(i));
 }
 
-template <class Args>
+// In a whole step the living particle then moves at once: its pair sums are its own slot's, and no
+// thread's collision reads anything but the sorted copies.
+template <class Args, bool kWholeStep>
 __global__ void collide_kernel(Args args) {
   const ParticleArgs a = args.at(ParticlePhase::collide);
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i < a.live_count) collide_particle(a.arrays, a.model, i);
+  if (i >= a.live_count) return;
+  collide_particle(a.arrays, a.model, i);
+  if (kWholeStep && a.arrays.sorted_key[i] != sentinel_key(a.model))
+    integrate_particle(a.arrays, a.model, int(a.arrays.sorted_slot[i]));
 }
 
 template <class Args>
@@ -147,56 +166,62 @@ __global__ void integrate_kernel(Args args) {
   if (t < a.live_count) integrate_particle(a.arrays, a.model, live_slot(a, t));
 }
 
-// The threads a step's launches take: for its new particles, and for its live ones (0: no launch).
-struct Grid {
-  int new_threads;
-  int live_threads;
-};
-
 // Every cell's start (and, past the last, the living's count) from the counts.
 void scan_counts(const ParticleArrays& p, const ParticleModel& m, const BinScratch& b, cudaStream_t stream) {
   std::size_t bytes = b.scan_bytes;
   BLEEDSIM_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(b.scan, bytes, b.count, p.cell_start, int(cell_count(m)) + 1, stream));
 }
 
-// One phase's launches on `stream`; `shape` gives the arrays and the model, `args` the step.
-template <class Args>
-void launch_phase(ParticlePhase phase, const Args& args, const ParticleArgs& shape, Grid grid, cudaStream_t stream) {
-  const ParticleArrays& p = shape.arrays;
-  const int new_blocks = blocks_for(grid.new_threads), live_blocks = blocks_for(grid.live_threads);
+// The bin's launches over `live_threads` threads; `shape` gives the arrays and the model.
+template <class Args, bool kWholeStep>
+void launch_bin(const Args& args, const ParticleArgs& shape, int live_threads, cudaStream_t stream) {
+  const int blocks = blocks_for(live_threads);
+  const BinScratch b = bin_scratch(shape.arrays, cell_count(shape.model));
+  count_kernel<Args, kWholeStep><<<blocks, kThreads, 0, stream>>>(args, b);
+  check_launch("count_kernel");
+  scan_counts(shape.arrays, shape.model, b, stream);
+  arrive_kernel<<<blocks, kThreads, 0, stream>>>(args, b);
+  check_launch("arrive_kernel");
+  place_kernel<<<blocks, kThreads, 0, stream>>>(args, b);
+  check_launch("place_kernel");
+}
+
+// One phase on its own (the default stream): each its own launches.
+void launch_phase(ParticlePhase phase, const ParticleArgs& a) {
+  const GivenArgs args{a};
+  const int new_blocks = blocks_for(a.new_count), live_blocks = blocks_for(a.live_count);
   switch (phase) {
     case ParticlePhase::emit:
       if (new_blocks == 0) return;
-      emit_kernel<<<new_blocks, kThreads, 0, stream>>>(args);
+      emit_kernel<<<new_blocks, kThreads>>>(args);
       check_launch("emit_kernel");
       break;
-    case ParticlePhase::bin: {
-      if (live_blocks == 0) return;
-      const BinScratch b = bin_scratch(p, cell_count(shape.model));
-      count_kernel<<<live_blocks, kThreads, 0, stream>>>(args, b);
-      check_launch("count_kernel");
-      scan_counts(p, shape.model, b, stream);
-      arrive_kernel<<<live_blocks, kThreads, 0, stream>>>(args, b);
-      check_launch("arrive_kernel");
-      place_kernel<<<live_blocks, kThreads, 0, stream>>>(args, b);
-      check_launch("place_kernel");
+    case ParticlePhase::bin:
+      if (live_blocks > 0) launch_bin<GivenArgs, false>(args, a, a.live_count, nullptr);
       break;
-    }
     case ParticlePhase::collide:
       if (live_blocks == 0) return;
-      collide_kernel<<<live_blocks, kThreads, 0, stream>>>(args);
+      collide_kernel<GivenArgs, false><<<live_blocks, kThreads>>>(args);
       check_launch("collide_kernel");
       break;
     case ParticlePhase::integrate:
       if (live_blocks == 0) return;
-      integrate_kernel<<<live_blocks, kThreads, 0, stream>>>(args);
+      integrate_kernel<<<live_blocks, kThreads>>>(args);
       check_launch("integrate_kernel");
       break;
   }
 }
 
-constexpr ParticlePhase kStepPhases[] = {ParticlePhase::emit, ParticlePhase::bin, ParticlePhase::collide,
-                                         ParticlePhase::integrate};
+// A whole step (emit, bin, collide, integrate) over `live_threads` threads, in four launches and
+// CUB's scan: emission and the dead's ageing ride in the bin's first launch, the living's
+// integration in the collision's. The same bytes as the phases one by one (core/physics/particles.h
+// says which slots each touches).
+void launch_step(const PlannedArgs& args, int live_threads, cudaStream_t stream) {
+  if (live_threads == 0) return;
+  launch_bin<PlannedArgs, true>(args, args.base, live_threads, stream);
+  collide_kernel<PlannedArgs, true><<<blocks_for(live_threads), kThreads, 0, stream>>>(args);
+  check_launch("collide_kernel");
+}
 
 // Threads for `count` elements in a graph that must serve later frames too: a power of two, at least
 // `least`, at most the ring (0 when none), so the graph changes only when a count outgrows its size.
@@ -213,10 +238,10 @@ struct GraphShape {
   const ParticleStep* steps = nullptr;
   const Emitter* emitters = nullptr;
   int count = 0;
-  Grid grid{0, 0};
+  int live_threads = 0;
   bool operator==(const GraphShape& o) const {
     return position == o.position && steps == o.steps && emitters == o.emitters && count == o.count &&
-           grid.new_threads == o.grid.new_threads && grid.live_threads == o.grid.live_threads;
+           live_threads == o.live_threads;
   }
 };
 
@@ -241,22 +266,13 @@ class StepGraph final : public TwinCache {
   void run(const ParticleSteps& f) {
     copy_to_device(f);
     if (f.count == 1) {  // a step on its own (between the instrument's): its launches, directly
-      const ParticleStep& step = f.steps[0];
-      for (const ParticlePhase phase : kStepPhases) {
-        const ParticleArgs a = args_at(f.base, step, f.device_emitters, phase);
-        launch_phase(phase, GivenArgs{a}, a, Grid{a.new_count, a.live_count}, stream_);
-      }
+      launch_step(PlannedArgs{f.base, f.device_steps, f.device_emitters, 0}, f.steps[0].live_count, stream_);
       return;
     }
-    int most_new = 0, most_live = 0;
-    for (int s = 0; s < f.count; ++s) {
-      most_new = std::max(most_new, f.steps[s].new_count);
-      most_live = std::max({most_live, f.steps[s].live_count, f.steps[s].emit_live_count});
-    }
-    const int capacity = f.base.arrays.capacity;
+    int most_live = 0;
+    for (int s = 0; s < f.count; ++s) most_live = std::max(most_live, f.steps[s].live_count);
     const GraphShape shape{f.base.arrays.position, f.device_steps, f.device_emitters, f.count,
-                           Grid{graph_threads(most_new, kThreads, capacity),
-                                graph_threads(most_live, 16 * kThreads, capacity)}};
+                           graph_threads(most_live, 16 * kThreads, f.base.arrays.capacity)};
     if (!exec_ || !(shape == shape_)) capture(f, shape);
     BLEEDSIM_CUDA_CHECK(cudaGraphLaunch(exec_, stream_));
   }
@@ -302,16 +318,15 @@ class StepGraph final : public TwinCache {
     BLEEDSIM_CUDA_CHECK(cudaStreamBeginCapture(stream_, cudaStreamCaptureModeThreadLocal));
     try {
       for (int s = 0; s < f.count; ++s)
-        for (const ParticlePhase phase : kStepPhases)
-          launch_phase(phase, PlannedArgs{f.base, f.device_steps, f.device_emitters, s}, f.base, shape.grid, stream_);
+        launch_step(PlannedArgs{f.base, f.device_steps, f.device_emitters, s}, shape.live_threads, stream_);
     } catch (...) {
       if (cudaStreamEndCapture(stream_, &graph) == cudaSuccess && graph) cudaGraphDestroy(graph);
       throw;
     }
     BLEEDSIM_CUDA_CHECK(cudaStreamEndCapture(stream_, &graph));
     // A graph of the same kernels in the same order, with other sizes or buffers, updates the one
-    // there is, at a fraction of making a new one; other kernels (another number of steps, a phase
-    // with nothing to do, CUB's choice for other items) need a new one. Which it is, is decided
+    // there is, at a fraction of making a new one; other kernels (another number of steps, steps
+    // with no particles, CUB's choice for other items) need a new one. Which it is, is decided
     // here rather than by a failed update, which tools such as compute-sanitizer report as errors.
     const std::unique_ptr<CUgraph_st, cudaError_t (*)(cudaGraph_t)> owned(graph, cudaGraphDestroy);
     std::vector<const void*> kernels = kernels_of(graph);
@@ -367,7 +382,7 @@ std::size_t particle_sort_scratch_cuda(int capacity, std::uint32_t cells) {
 }
 
 void cuda_twin(ParticlePhase phase, const ParticleArgs& a) {
-  launch_phase(phase, GivenArgs{a}, a, Grid{a.new_count, a.live_count}, nullptr);
+  launch_phase(phase, a);
 }
 
 void cuda_twin(const ParticleSteps& f) {

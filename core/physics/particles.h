@@ -134,7 +134,7 @@ enum class ParticlePhase { emit, bin, collide, integrate };
 struct ParticleArgs {
   ParticleModel model;
   ParticleArrays arrays;
-  const Emitter* emitters;  // emit: sorted by first_new
+  const Emitter* emitters;  // emit: sorted by first_new, their ids consecutive (new particle e: the first's first_id + e)
   int emitter_count;
   int new_count;            // emit: at most capacity
   std::uint64_t step;       // emit: the step number, for the jitter
@@ -265,6 +265,16 @@ BLEEDSIM_HD inline void emit_particle(const ParticleArgs& a, int t) {
            {m.velocity_x * from.speed_scale + m.velocity_jitter * jitter(2),
             m.velocity_y * from.speed_scale + m.velocity_jitter * jitter(3)});
   a.arrays.age[slot] = 0;
+}
+
+// Which of this step's new particles a slot receives (new_count: none). Their ids run on from the
+// first emitter's first_id, so new particle e goes to slot (first id + e) mod capacity: a backend
+// may emit each new particle from the thread that owns its slot.
+BLEEDSIM_HD inline int new_particle_in(const ParticleArgs& a, std::size_t slot) {
+  if (a.new_count == 0) return 0;
+  const std::uint64_t capacity = std::uint64_t(a.arrays.capacity);
+  const std::uint64_t e = (std::uint64_t(slot) + capacity - a.emitters[0].first_id % capacity) % capacity;
+  return e < std::uint64_t(a.new_count) ? int(e) : a.new_count;
 }
 
 // ---- bin ---------------------------------------------------------------------------------------
@@ -464,6 +474,16 @@ BLEEDSIM_HD inline float grip(const ParticleModel& m, std::uint32_t on_edge) {
   return on_edge ? m.yield + m.pinning : m.yield;
 }
 
+// An aspirated particle ages in its slot, and is counted when its lifetime runs out, as the
+// accounting counts its id expired then. Nothing else of a step reads or writes a dead slot, so a
+// backend may do this at any point of the step (CUDA: in the bin's first pass).
+BLEEDSIM_HD inline void age_aspirated(const ParticleArrays& p, const ParticleModel& m, int slot) {
+  const std::uint32_t age = p.age[slot];
+  if (!is_aspirated(age)) return;
+  p.age[slot] = age + 1;
+  if (((age + 1) & ~kAspirated) == m.lifetime.steps) count_one(&p.fates->expired);
+}
+
 // Semi-implicit Euler: the new velocity from gravity and contacts, drag taken implicitly; then the
 // grip as friction taken implicitly (Coulomb): it removes up to grip·dt of the speed, and holds a
 // particle it can stop, so the film comes to rest instead of creeping; then capped at the speed
@@ -474,12 +494,7 @@ BLEEDSIM_HD inline float grip(const ParticleModel& m, std::uint32_t on_edge) {
 BLEEDSIM_HD inline void integrate_particle(const ParticleArrays& p, const ParticleModel& m, int slot) {
   const std::uint32_t age = p.age[slot];
   if (!is_alive(m, age)) {
-    // An aspirated particle ages in its slot, and is counted when its lifetime runs out, as the
-    // accounting counts its id expired then.
-    if (is_aspirated(age)) {
-      p.age[slot] = age + 1;
-      if (((age + 1) & ~kAspirated) == m.lifetime.steps) count_one(&p.fates->expired);
-    }
+    age_aspirated(p, m, slot);
     return;
   }
   const auto [x0, y0] = pair_at(p.position, std::size_t(slot));

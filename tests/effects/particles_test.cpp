@@ -3,6 +3,7 @@
 // their formulas, the stability limit against a pile run just inside and just outside it.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -205,6 +206,43 @@ TEST(ParticleEmit, EachNewParticleLeavesFromItsOwnCut) {
         ASSERT_EQ(age[slot], 0u);
       }
   }
+}
+
+// The slot each new particle goes to, found backwards (new_particle_in: what lets the CUDA step emit
+// from the thread that owns a slot) is the slot emit_particle writes it to: for bursts that wrap
+// round the ring, fill it exactly, or fill a part of it, every slot emit_particle writes names its
+// new particle and every other slot names none.
+TEST(ParticleEmit, EachSlotKnowsTheNewParticleItReceives) {
+  constexpr int kCapacity = 60;  // not a power of two, so that a wrong modulus shows
+  std::vector<float> position(2 * kCapacity), velocity(2 * kCapacity);
+  std::vector<std::uint32_t> age(kCapacity);
+  ParticleArgs a{};
+  a.model = pair_model();
+  a.arrays.capacity = kCapacity;
+  a.arrays.position = position.data();
+  a.arrays.velocity = velocity.data();
+  a.arrays.age = age.data();
+  for (const std::uint64_t first_id : {0ull, 50ull, 59ull, 60ull, 1000003ull})
+    for (const std::uint32_t cuts : {0u, 1u, 3u, 15u}) {
+      std::vector<Emitter> emitters;
+      std::uint32_t first_new = 0;
+      for (std::uint32_t c = 0; c < cuts; ++c) {  // 4 new particles a cut: 0, 4, 12 or 60 (the ring)
+        emitters.push_back({1.0f, 1.0f, first_id + first_new, first_new, 4u});
+        first_new += 4;
+      }
+      a.emitters = emitters.data();
+      a.emitter_count = int(cuts);
+      a.new_count = int(first_new);
+      std::fill(age.begin(), age.end(), kNeverUsed);
+      std::vector<int> written(kCapacity, a.new_count);
+      for (int e = 0; e < a.new_count; ++e) {
+        emit_particle(a, e);
+        for (std::size_t slot = 0; slot < kCapacity; ++slot)
+          if (age[slot] == 0 && written[slot] == a.new_count) written[slot] = e;
+      }
+      for (std::size_t slot = 0; slot < kCapacity; ++slot)
+        ASSERT_EQ(new_particle_in(a, slot), written[slot]) << "first id " << first_id << ", " << cuts << " cuts, slot " << slot;
+    }
 }
 
 struct Pull {
