@@ -475,8 +475,9 @@ BLEEDSIM_HD inline float grip(const ParticleModel& m, std::uint32_t on_edge) {
 }
 
 // An aspirated particle ages in its slot, and is counted when its lifetime runs out, as the
-// accounting counts its id expired then. Nothing else of a step reads or writes a dead slot, so a
-// backend may do this at any point of the step (CUDA: in the bin's first pass).
+// accounting counts its id expired then. Of the rest of a step only emission, which may give the
+// slot a new particle, touches a dead slot: a backend may age it at any point after that (CUDA:
+// in the bin's first launch, from the thread that would have emitted into it).
 BLEEDSIM_HD inline void age_aspirated(const ParticleArrays& p, const ParticleModel& m, int slot) {
   const std::uint32_t age = p.age[slot];
   if (!is_aspirated(age)) return;
