@@ -10,8 +10,9 @@
 //
 // A step in a scene runs whole, in four launches and CUB's scan: the thread that counts a slot
 // into its cell first emits the new particle the slot receives (or ages it, if the suction took
-// it), and the thread that sums a living particle's pairs then moves it. The phases on their own
-// (the benchmarks', the tests') launch one by one.
+// it), and the thread that sums a living particle's pairs then moves it. Each of its launches may
+// be scheduled while the one before it runs (programmatic dependent launch, on sm_90 and later).
+// The phases on their own (the benchmarks', the tests') launch one by one.
 //
 // A frame's steps run as one CUDA graph: hundreds of steps of small launches cost their launch
 // overhead, not their arithmetic, when the host issues each one. The graph's launches read their
@@ -50,6 +51,16 @@ struct PlannedArgs {
   int s;
   __device__ ParticleArgs at(ParticlePhase phase) const { return args_at(base, steps[s], emitters, phase); }
 };
+
+// Hopper's programmatic dependent launch: a kernel of a whole step may be scheduled while the kernel
+// before it still runs, and waits here, before it reads anything, for that kernel to finish and
+// its writes to be seen. Only the launch's latency overlaps, never the work. (Code compiled for an
+// older GPU has no wait, and is then launched as usual: see launch.)
+__device__ void wait_for_the_kernel_before() {
+#if defined(__CUDA_ARCH__) && __CUDA_ARCH__ >= 900
+  cudaGridDependencySynchronize();
+#endif
+}
 
 template <class Args>
 __global__ void emit_kernel(Args args) {
@@ -97,6 +108,7 @@ BinScratch bin_scratch(const ParticleArrays& p, std::uint32_t cells) {
 // it if the suction took it (the step's emit, and the integrate of the dead, in the bin's launch).
 template <class Args, bool kWholeStep>
 __global__ void count_kernel(Args args, BinScratch b) {
+  wait_for_the_kernel_before();
   const ParticleArgs a = args.at(ParticlePhase::bin);
   const int t = blockIdx.x * blockDim.x + threadIdx.x;
   if (t >= a.live_count) return;
@@ -116,6 +128,7 @@ __global__ void count_kernel(Args args, BinScratch b) {
 // particle of the cell writes the same zero, after the scan has read the count).
 template <class Args>
 __global__ void arrive_kernel(Args args, BinScratch b) {
+  wait_for_the_kernel_before();
   const ParticleArgs a = args.at(ParticlePhase::bin);
   const int t = blockIdx.x * blockDim.x + threadIdx.x;
   if (t >= a.live_count) return;
@@ -131,6 +144,7 @@ __global__ void arrive_kernel(Args args, BinScratch b) {
 // largest key, as on the CPU.
 template <class Args>
 __global__ void place_kernel(Args args, BinScratch b) {
+  wait_for_the_kernel_before();
   const ParticleArgs a = args.at(ParticlePhase::bin);
   const ParticleArrays& p = a.arrays;
   const int t = blockIdx.x * blockDim.x + threadIdx.x;
@@ -151,6 +165,7 @@ __global__ void place_kernel(Args args, BinScratch b) {
 // thread's collision reads anything but the sorted copies.
 template <class Args, bool kWholeStep>
 __global__ void collide_kernel(Args args) {
+  wait_for_the_kernel_before();
   const ParticleArgs a = args.at(ParticlePhase::collide);
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i >= a.live_count) return;
@@ -172,18 +187,44 @@ void scan_counts(const ParticleArrays& p, const ParticleModel& m, const BinScrat
   BLEEDSIM_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(b.scan, bytes, b.count, p.cell_start, int(cell_count(m)) + 1, stream));
 }
 
+// Whether this build's particle kernels wait for the kernel before them: compiled for sm_90 or
+// later, not JIT-compiled from the older PTX (all of them alike: one translation unit, one list
+// of architectures).
+bool kernels_wait_for_the_last() {
+  static const bool waits = [] {
+    cudaFuncAttributes compiled{};
+    BLEEDSIM_CUDA_CHECK(cudaFuncGetAttributes(&compiled, collide_kernel<PlannedArgs, true>));
+    return compiled.ptxVersion >= 90;
+  }();
+  return waits;
+}
+
+// kernel<<<blocks, kThreads, 0, stream>>>(args...), in a whole step allowed to start while the
+// launch before it finishes (wait_for_the_kernel_before).
+template <bool kWholeStep, class... P, class... A>
+void launch(void (*kernel)(P...), const char* name, int blocks, cudaStream_t stream, const A&... args) {
+  cudaLaunchAttribute overlap{};
+  overlap.id = cudaLaunchAttributeProgrammaticStreamSerialization;
+  overlap.val.programmaticStreamSerializationAllowed = 1;
+  cudaLaunchConfig_t config{};
+  config.gridDim = dim3(unsigned(blocks));
+  config.blockDim = dim3(kThreads);
+  config.stream = stream;
+  config.attrs = &overlap;
+  config.numAttrs = kWholeStep && kernels_wait_for_the_last() ? 1 : 0;
+  BLEEDSIM_CUDA_CHECK(cudaLaunchKernelEx(&config, kernel, args...));
+  check_launch(name);
+}
+
 // The bin's launches over `live_threads` threads; `shape` gives the arrays and the model.
 template <class Args, bool kWholeStep>
 void launch_bin(const Args& args, const ParticleArgs& shape, int live_threads, cudaStream_t stream) {
   const int blocks = blocks_for(live_threads);
   const BinScratch b = bin_scratch(shape.arrays, cell_count(shape.model));
-  count_kernel<Args, kWholeStep><<<blocks, kThreads, 0, stream>>>(args, b);
-  check_launch("count_kernel");
+  launch<kWholeStep>(count_kernel<Args, kWholeStep>, "count_kernel", blocks, stream, args, b);
   scan_counts(shape.arrays, shape.model, b, stream);
-  arrive_kernel<<<blocks, kThreads, 0, stream>>>(args, b);
-  check_launch("arrive_kernel");
-  place_kernel<<<blocks, kThreads, 0, stream>>>(args, b);
-  check_launch("place_kernel");
+  launch<kWholeStep>(arrive_kernel<Args>, "arrive_kernel", blocks, stream, args, b);
+  launch<kWholeStep>(place_kernel<Args>, "place_kernel", blocks, stream, args, b);
 }
 
 // One phase on its own (the default stream): each its own launches.
@@ -193,21 +234,18 @@ void launch_phase(ParticlePhase phase, const ParticleArgs& a) {
   switch (phase) {
     case ParticlePhase::emit:
       if (new_blocks == 0) return;
-      emit_kernel<<<new_blocks, kThreads>>>(args);
-      check_launch("emit_kernel");
+      launch<false>(emit_kernel<GivenArgs>, "emit_kernel", new_blocks, nullptr, args);
       break;
     case ParticlePhase::bin:
       if (live_blocks > 0) launch_bin<GivenArgs, false>(args, a, a.live_count, nullptr);
       break;
     case ParticlePhase::collide:
       if (live_blocks == 0) return;
-      collide_kernel<GivenArgs, false><<<live_blocks, kThreads>>>(args);
-      check_launch("collide_kernel");
+      launch<false>(collide_kernel<GivenArgs, false>, "collide_kernel", live_blocks, nullptr, args);
       break;
     case ParticlePhase::integrate:
       if (live_blocks == 0) return;
-      integrate_kernel<<<live_blocks, kThreads>>>(args);
-      check_launch("integrate_kernel");
+      launch<false>(integrate_kernel<GivenArgs>, "integrate_kernel", live_blocks, nullptr, args);
       break;
   }
 }
@@ -219,8 +257,7 @@ void launch_phase(ParticlePhase phase, const ParticleArgs& a) {
 void launch_step(const PlannedArgs& args, int live_threads, cudaStream_t stream) {
   if (live_threads == 0) return;
   launch_bin<PlannedArgs, true>(args, args.base, live_threads, stream);
-  collide_kernel<PlannedArgs, true><<<blocks_for(live_threads), kThreads, 0, stream>>>(args);
-  check_launch("collide_kernel");
+  launch<true>(collide_kernel<PlannedArgs, true>, "collide_kernel", blocks_for(live_threads), stream, args);
 }
 
 // Threads for `count` elements in a graph that must serve later frames too: a power of two, at least
@@ -251,7 +288,10 @@ struct GraphShape {
 // copy before it.
 class StepGraph final : public TwinCache {
  public:
-  StepGraph() { BLEEDSIM_CUDA_CHECK(cudaStreamCreate(&stream_)); }
+  StepGraph() {
+    BLEEDSIM_CUDA_CHECK(cudaStreamCreate(&stream_));
+    kernels_wait_for_the_last();  // asked here, not first while a graph is being captured
+  }
   ~StepGraph() override {
     if (exec_) cudaGraphExecDestroy(exec_);
     for (Staging& s : staging_) {
