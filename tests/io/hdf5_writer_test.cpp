@@ -1,16 +1,16 @@
 // The HDF5 frame writer, read back through the HDF5 C API: the layout docs/output-format.md
-// promises, the bytes written, determinism and partial files.
+// promises, the bytes written, determinism and partial files (the frames it writes:
+// hdf5_samples.h; the layout checker against them: hdf5_layout_checker_test.cpp).
 #include "core/io/hdf5_writer.h"
 #include "tests/io/hdf5_read_back.h"
+#include "tests/io/hdf5_samples.h"
 #include "tests/test_paths.h"
 
 #include <gtest/gtest.h>
 #include <hdf5.h>
-#include <sys/wait.h>
 
 #include <algorithm>
 #include <cstdint>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -24,109 +24,6 @@ namespace {
 
 namespace fs = std::filesystem;
 using namespace test;
-
-// --- What the tests write ------------------------------------------------------------------------
-
-constexpr int kWidth = 7;
-constexpr int kHeight = 5;
-constexpr int kFrames = 3;
-constexpr int kPixels = kWidth * kHeight;
-
-using Attributes = std::vector<std::pair<std::string, std::string>>;
-
-const Attributes kAttributes = {{"bleedsim_version", "0.1.0"},
-                                {"scenario_text", "[spread]\nradius_mm = 4.0  # Ø 8 mm wound\n"}};
-
-std::vector<FieldLayout> sample_fields() {
-  return {{"frame", ElementType::u8, 4, kWidth, kHeight, "", "composited frame, RGBA8"},
-          {"spread/stain", ElementType::f32, 1, kWidth, kHeight, "1", "stain coverage"}};
-}
-
-// Every byte differs from its neighbours and from the same byte of the other frames.
-std::vector<std::uint8_t> frame_pattern(int frame) {
-  std::vector<std::uint8_t> rgba(std::size_t(kPixels) * 4);
-  for (std::size_t i = 0; i < rgba.size(); ++i)
-    rgba[i] = std::uint8_t(i * 7 + 31 * std::size_t(frame));
-  return rgba;
-}
-
-std::vector<float> stain_values(int frame) {
-  std::vector<float> stain(kPixels);
-  for (int i = 0; i < kPixels; ++i) stain[std::size_t(i)] = 0.1f * float(i) - 1.5f + float(frame);
-  return stain;
-}
-
-double frame_time(int frame) { return (frame + 1) / 30.0; }
-
-void append_sample_frame(Hdf5FrameWriter& writer, int frame) {
-  const std::vector<std::uint8_t> rgba = frame_pattern(frame);
-  const std::vector<float> stain = stain_values(frame);
-  writer.append(frame_time(frame), {rgba.data(), stain.data()});
-}
-
-void write_sample(const fs::path& path, int deflate_level,
-                  const Attributes& attributes = kAttributes) {
-  Hdf5FrameWriter writer(path.string(), sample_fields(), attributes, deflate_level);
-  for (int frame = 0; frame < kFrames; ++frame) append_sample_frame(writer, frame);
-  writer.finish(true);
-}
-
-// --- Per-element arrays (image == false): particles and counters ---------------------------------
-
-constexpr int kSlots = 5;     // particle ring-buffer capacity
-constexpr int kCounters = 4;  // accounting counters
-
-std::vector<FieldLayout> array_fields() {
-  std::vector<FieldLayout> fields = sample_fields();
-  fields.push_back({"particles/position", ElementType::f32, 2, kSlots, 1, "m",
-                    "particle position (x, y), one per ring-buffer slot", false});
-  fields.push_back({"particles/accounting", ElementType::u64, 1, kCounters, 1, "1",
-                    "particle counters", false});
-  fields.push_back({"particles/id", ElementType::u32, 1, kSlots, 1, "", "particle id per slot",
-                    false});
-  return fields;
-}
-
-// (x, y) per slot, x and y interleaved as in memory ([slot][component]), different in every slot,
-// component and frame.
-std::vector<float> position_values(int frame) {
-  std::vector<float> xy(std::size_t(kSlots) * 2);
-  for (std::size_t i = 0; i < xy.size(); ++i)
-    xy[i] = 0.375f * float(i) - 1.25f + 10.0f * float(frame) + (i % 2 ? 0.001f : 0.0f);
-  return xy;
-}
-
-// Beyond 2^53 and 2^63, so a detour through double or a signed type would show.
-std::vector<std::uint64_t> accounting_values(int frame) {
-  const std::uint64_t f = std::uint64_t(frame);
-  return {f + 1, (std::uint64_t(1) << 40) + 3 * f, 0xFFFFFFFFFFFFFFF0ull + f,
-          0x0123456789ABCDEFull * (f + 1)};
-}
-
-// Beyond 2^31, so a signed 32-bit detour would show.
-std::vector<std::uint32_t> id_values(int frame) {
-  std::vector<std::uint32_t> ids(kSlots);
-  for (int i = 0; i < kSlots; ++i)
-    ids[std::size_t(i)] = 0xF0000000u + std::uint32_t(i) * 7u + std::uint32_t(frame) * 100u;
-  return ids;
-}
-
-void write_array_sample(const fs::path& path, int deflate_level,
-                        const Attributes& attributes = kAttributes) {
-  Hdf5FrameWriter writer(path.string(), array_fields(), attributes, deflate_level);
-  for (int frame = 0; frame < kFrames; ++frame) {
-    const std::vector<std::uint8_t> rgba = frame_pattern(frame);
-    const std::vector<float> stain = stain_values(frame);
-    const std::vector<float> position = position_values(frame);
-    const std::vector<std::uint64_t> accounting = accounting_values(frame);
-    const std::vector<std::uint32_t> ids = id_values(frame);
-    writer.append(frame_time(frame),
-                  {rgba.data(), stain.data(), position.data(), accounting.data(), ids.data()});
-  }
-  writer.finish(true);
-}
-
-fs::path test_folder() { return test_output_folder("hdf5_writer"); }
 
 fs::path partial(const fs::path& path) { return path.string() + ".partial"; }
 
@@ -559,56 +456,6 @@ TEST(Hdf5FrameWriter, ReleasesEveryHandle) {
     EXPECT_NE(message_of(error).find("failed.h5.partial"), std::string::npos) << error.what();
   }
   EXPECT_EQ(H5Fget_obj_count(H5F_OBJ_ALL, H5F_OBJ_ALL), 0);
-}
-
-// --- The layout checker script -----------------------------------------------------------------
-
-// Runs tests/check_hdf5_layout.py as a user would; its exit status.
-int run_layout_checker(const fs::path& file, const std::string& more_arguments = "") {
-  const std::string command = "'" + test::python() + "' '" + test::source_dir() +
-                              "/tests/check_hdf5_layout.py' '" + file.string() +
-                              "' --frames 3 --width 7 --height 5 --fields spread/stain" +
-                              more_arguments;
-  const int status = std::system(command.c_str());
-  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-// The writer and the checker describe one layout: a full file passes, one without a provenance
-// attribute fails.
-TEST(Hdf5LayoutChecker, AcceptsWhatTheWriterWritesAndRejectsMissingProvenance) {
-  const std::string has_h5py = "'" + test::python() + "' -c 'import h5py' >/dev/null 2>&1";
-  if (std::system(has_h5py.c_str()) != 0)
-    GTEST_SKIP() << test::python() << " has no h5py (BLEEDSIM_PYTHON may name one that has)";
-  const fs::path folder = test_folder();
-  Attributes provenance = {{"bleedsim_version", "0.1.0"}, {"git_sha", "0123456789abcdef"},
-                           {"backend", "reference_cpu"},  {"device", "test host"},
-                           {"build_flags", "-O2"},        {"scenario_text", "[spread]\n"}};
-  write_sample(folder / "good.h5", 4, provenance);
-  EXPECT_EQ(run_layout_checker(folder / "good.h5"), 0);
-
-  provenance.erase(provenance.begin() + 1);  // git_sha
-  write_sample(folder / "no_git_sha.h5", 4, provenance);
-  EXPECT_EQ(run_layout_checker(folder / "no_git_sha.h5"), 1);
-}
-
-// Per-element arrays pass as (T, N[, C]) without image attributes; an image named as one fails.
-TEST(Hdf5LayoutChecker, AcceptsNonImageArraysAndRejectsAnImageNamedAsOne) {
-  const std::string has_h5py = "'" + test::python() + "' -c 'import h5py' >/dev/null 2>&1";
-  if (std::system(has_h5py.c_str()) != 0)
-    GTEST_SKIP() << test::python() << " has no h5py (BLEEDSIM_PYTHON may name one that has)";
-  const fs::path folder = test_folder();
-  const Attributes provenance = {{"bleedsim_version", "0.1.0"}, {"git_sha", "0123456789abcdef"},
-                                 {"backend", "reference_cpu"},  {"device", "test host"},
-                                 {"build_flags", "-O2"},        {"scenario_text", "[spread]\n"}};
-  write_array_sample(folder / "arrays.h5", 4, provenance);
-  EXPECT_EQ(run_layout_checker(folder / "arrays.h5"), 0);  // arrays not asked for: ignored
-  EXPECT_EQ(run_layout_checker(folder / "arrays.h5",
-                               " --arrays particles/position,particles/accounting,particles/id"),
-            0);
-  // /spread/stain is (T, H, W) and an HDF5 image: CLASS gives it away.
-  EXPECT_EQ(run_layout_checker(folder / "arrays.h5", " --arrays particles/position,spread/stain"),
-            1);
-  EXPECT_EQ(run_layout_checker(folder / "arrays.h5", " --arrays particles/missing"), 1);
 }
 
 }  // namespace

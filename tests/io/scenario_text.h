@@ -39,6 +39,24 @@ inline const std::string kBase =
 // The line that text appended to kBase starts on; it lands in the [output] table.
 constexpr int kEnd = 19;
 
+// A valid scene with an empty [particles] table last, so that text appended to it lands in
+// [particles] (kParticlesEnd is the line it starts on).
+inline const std::string kParticleBase =
+    "[scene]\n"              //  1
+    "width_px = 64\n"        //  2
+    "height_px = 48\n"       //  3
+    "width_mm = 16.0\n"      //  4
+    "height_mm = 12.0\n"     //  5
+    "duration_s = 0.5\n"     //  6
+    "frame_rate_hz = 30\n"   //  7
+    "[[cut]]\n"              //  8
+    "x_mm = 8.0\n"           //  9
+    "y_mm = 6.0\n"           // 10
+    "[particles]\n";         // 11
+constexpr int kParticlesEnd = 12;
+
+inline std::string particles_with(const std::string& lines) { return kParticleBase + lines; }
+
 inline std::vector<std::string> lines_of(const std::string& text) {
   std::vector<std::string> lines;
   std::istringstream in(text);
