@@ -14,17 +14,24 @@
 // be scheduled while the one before it runs (programmatic dependent launch, on sm_90 and later).
 // The phases on their own (the benchmarks', the tests') launch one by one.
 //
-// A frame's steps run as one CUDA graph: hundreds of steps of small launches cost their launch
-// overhead, not their arithmetic, when the host issues each one. The graph's launches read their
+// A frame of few particles (a scene's) runs in one launch, on one cluster of blocks that wait for
+// each other where the step's launches would end (frame_in_one_cluster). Any other frame's steps
+// run as one CUDA graph: hundreds of steps of small launches cost their launch overhead, not their
+// arithmetic, when the host issues each one. The graph's launches read their
 // step's arguments from the step list on the device, so the same graph serves every frame whose
 // shape (steps, grid sizes, buffers) is the same; the host copies the list there, through pinned
 // memory, before launching it.
+#include <cooperative_groups.h>
+#include <cub/block/block_scan.cuh>
 #include <cub/device/device_scan.cuh>
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdlib>
 #include <cstring>
 #include <memory>
+#include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "core/physics/particles.h"
@@ -34,6 +41,16 @@ namespace bleedsim {
 namespace {
 
 constexpr int kThreads = 256;
+// A frame of few particles runs in one thread-block cluster (see frame_in_one_cluster): the most
+// blocks a portable cluster holds, each thread scanning kScanItems cells' counts at a time. Blocks
+// of 512 threads, not 1,024: on an H200 the default scene's frame took 5.52 ms so, 5.72 with 1,024.
+constexpr int kClusterBlocks = 8;
+constexpr int kClusterThreads = 512;
+constexpr int kScanItems = 4;
+// The most live particles, and cells, of a frame that runs in one cluster: two particles a thread
+// (past them the graph's launches over the whole GPU catch up), and two passes of a block's scan.
+constexpr int kClusterMostLive = 2 * kClusterBlocks * kClusterThreads;
+constexpr std::uint32_t kClusterMostCells = 2 * kClusterBlocks * kClusterThreads * kScanItems;
 
 int blocks_for(int count) { return (count + kThreads - 1) / kThreads; }
 
@@ -74,6 +91,7 @@ __global__ void emit_kernel(Args args) {
 // order, and the scan's temporary storage.
 struct BinScratch {
   std::uint32_t* count;      // cells + 1 (the last stays 0, so the scan's last entry is the total)
+  std::uint32_t* part_count; // per part of the cells a cluster's block scans: its particles (zero between steps)
   std::uint32_t* arrival;    // per live particle t
   std::uint32_t* unordered;  // per sorted position: the t that arrived there
   void* scan;
@@ -94,6 +112,8 @@ BinScratch bin_scratch(const ParticleArrays& p, std::uint32_t cells) {
   BinScratch b{};
   b.count = reinterpret_cast<std::uint32_t*>(at);
   at += aligned((std::size_t(cells) + 1) * sizeof(std::uint32_t));
+  b.part_count = reinterpret_cast<std::uint32_t*>(at);
+  at += aligned(kClusterBlocks * sizeof(std::uint32_t));
   b.arrival = reinterpret_cast<std::uint32_t*>(at);
   at += aligned(std::size_t(p.capacity) * sizeof(std::uint32_t));
   b.unordered = reinterpret_cast<std::uint32_t*>(at);
@@ -103,15 +123,13 @@ BinScratch bin_scratch(const ParticleArrays& p, std::uint32_t cells) {
   return b;
 }
 
-// The t-th live slot (ascending) counts itself into its cell; the dead and aspirated count nowhere.
-// In a whole step the thread that owns the slot first emits the new particle it receives, or ages
-// it if the suction took it (the step's emit, and the integrate of the dead, in the bin's launch).
+// The t-th live slot (ascending) counts itself into its cell (its key, returned); the dead and
+// aspirated count nowhere. In a whole step the thread that owns the slot first emits the new
+// particle it receives, or ages it if the suction took it (the step's emit, and the integrate of
+// the dead, in the bin's launch).
 template <class Args, bool kWholeStep>
-__global__ void count_kernel(Args args, BinScratch b) {
-  wait_for_the_kernel_before();
+__device__ std::uint32_t count_into_cell(const Args& args, const BinScratch& b, int t) {
   const ParticleArgs a = args.at(ParticlePhase::bin);
-  const int t = blockIdx.x * blockDim.x + threadIdx.x;
-  if (t >= a.live_count) return;
   const int slot = nth_live_slot_ascending(a, t);
   if (kWholeStep) {
     const ParticleArgs emitting = args.at(ParticlePhase::emit);
@@ -122,20 +140,32 @@ __global__ void count_kernel(Args args, BinScratch b) {
   const std::uint32_t key = cell_key_of(a.arrays, a.model, slot);
   a.arrays.cell_key[t] = key;
   if (key != sentinel_key(a.model)) b.arrival[t] = atomicAdd(&b.count[key], 1u);
+  return key;
+}
+
+template <class Args, bool kWholeStep>
+__global__ void count_kernel(Args args, BinScratch b) {
+  wait_for_the_kernel_before();
+  const int t = blockIdx.x * blockDim.x + threadIdx.x;
+  if (t < args.at(ParticlePhase::bin).live_count) count_into_cell<Args, kWholeStep>(args, b, t);
 }
 
 // Each particle at its arrival place in its cell's range; its cell's count back to zero (every
 // particle of the cell writes the same zero, after the scan has read the count).
 template <class Args>
-__global__ void arrive_kernel(Args args, BinScratch b) {
-  wait_for_the_kernel_before();
+__device__ void arrive(const Args& args, const BinScratch& b, int t) {
   const ParticleArgs a = args.at(ParticlePhase::bin);
-  const int t = blockIdx.x * blockDim.x + threadIdx.x;
-  if (t >= a.live_count) return;
   const std::uint32_t key = a.arrays.cell_key[t];
   if (key == sentinel_key(a.model)) return;
   b.unordered[a.arrays.cell_start[key] + b.arrival[t]] = std::uint32_t(t);
   b.count[key] = 0u;
+}
+
+template <class Args>
+__global__ void arrive_kernel(Args args, BinScratch b) {
+  wait_for_the_kernel_before();
+  const int t = blockIdx.x * blockDim.x + threadIdx.x;
+  if (t < args.at(ParticlePhase::bin).live_count) arrive(args, b, t);
 }
 
 // Each particle's final place: its cell's start plus the particles of its cell before it in
@@ -143,12 +173,9 @@ __global__ void arrive_kernel(Args args, BinScratch b) {
 // Sorted positions past the living (aspirated or expired particles in the live range) get the
 // largest key, as on the CPU.
 template <class Args>
-__global__ void place_kernel(Args args, BinScratch b) {
-  wait_for_the_kernel_before();
+__device__ void take_place(const Args& args, const BinScratch& b, int t) {
   const ParticleArgs a = args.at(ParticlePhase::bin);
   const ParticleArrays& p = a.arrays;
-  const int t = blockIdx.x * blockDim.x + threadIdx.x;
-  if (t >= a.live_count) return;
   const std::uint32_t none = sentinel_key(a.model);
   if (std::uint32_t(t) >= p.cell_start[none]) p.sorted_key[t] = none;
   const std::uint32_t key = p.cell_key[t];
@@ -161,17 +188,28 @@ __global__ void place_kernel(Args args, BinScratch b) {
   gather_sorted(p, int(i));
 }
 
+template <class Args>
+__global__ void place_kernel(Args args, BinScratch b) {
+  wait_for_the_kernel_before();
+  const int t = blockIdx.x * blockDim.x + threadIdx.x;
+  if (t < args.at(ParticlePhase::bin).live_count) take_place(args, b, t);
+}
+
 // In a whole step the living particle then moves at once: its pair sums are its own slot's, and no
 // thread's collision reads anything but the sorted copies.
 template <class Args, bool kWholeStep>
-__global__ void collide_kernel(Args args) {
-  wait_for_the_kernel_before();
+__device__ void collide(const Args& args, int i) {
   const ParticleArgs a = args.at(ParticlePhase::collide);
-  const int i = blockIdx.x * blockDim.x + threadIdx.x;
-  if (i >= a.live_count) return;
   collide_particle(a.arrays, a.model, i);
   if (kWholeStep && a.arrays.sorted_key[i] != sentinel_key(a.model))
     integrate_particle(a.arrays, a.model, int(a.arrays.sorted_slot[i]));
+}
+
+template <class Args, bool kWholeStep>
+__global__ void collide_kernel(Args args) {
+  wait_for_the_kernel_before();
+  const int i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i < args.at(ParticlePhase::collide).live_count) collide<Args, kWholeStep>(args, i);
 }
 
 template <class Args>
@@ -181,22 +219,93 @@ __global__ void integrate_kernel(Args args) {
   if (t < a.live_count) integrate_particle(a.arrays, a.model, live_slot(a, t));
 }
 
+// A frame's steps in one launch, on one thread-block cluster: for a scene's frame, a few thousand
+// particles on a panel's cells, whose step is a chain of short phases, each waiting for the one
+// before. The phases are the whole step's, calling the same functions in the same order, each
+// over every live particle; where a step's launches end, the cluster waits at its barrier (a
+// hardware one, which also makes every write before it seen after it), with no launch between.
+// The scan of the counts is the cluster's: block r scans part r of the cells, starting from the
+// particles of the parts before it, which the count phase tallied.
+__global__ void __launch_bounds__(kClusterThreads, 1) frame_in_one_cluster(PlannedArgs args, int steps, BinScratch b) {
+#if defined(__CUDA_ARCH__) && __CUDA_ARCH__ >= 900
+  using Scan = cub::BlockScan<std::uint32_t, kClusterThreads>;
+  __shared__ typename Scan::TempStorage scan;
+  __shared__ std::uint32_t part_count_here[kClusterBlocks];
+  const cooperative_groups::cluster_group cluster = cooperative_groups::this_cluster();
+  // Its barriers order the phases only across one cluster of all its blocks: a launch that is not
+  // one would race silently, so it stops here instead.
+  if (cluster.num_blocks() != unsigned(kClusterBlocks) || gridDim.x != unsigned(kClusterBlocks)) __trap();
+  const std::uint32_t entries = cell_count(args.base.model) + 1;
+  const std::uint32_t part = (entries + kClusterBlocks - 1) / kClusterBlocks;
+  const std::uint32_t begin = umin(entries, blockIdx.x * part), end = umin(entries, begin + part);
+  for (args.s = 0; args.s < steps; ++args.s) {
+    // Each block takes an equal share of the live particles, so that every multiprocessor works.
+    const int live = args.at(ParticlePhase::bin).live_count;
+    const int share = (live + kClusterBlocks - 1) / kClusterBlocks;
+    const int first = int(blockIdx.x) * share + int(threadIdx.x), past = min(live, (int(blockIdx.x) + 1) * share);
+    if (threadIdx.x < kClusterBlocks) part_count_here[threadIdx.x] = 0u;
+    __syncthreads();
+    for (int t = first; t < past; t += kClusterThreads) {
+      const std::uint32_t key = count_into_cell<PlannedArgs, true>(args, b, t);
+      if (key != sentinel_key(args.base.model)) atomicAdd(&part_count_here[key / part], 1u);
+    }
+    __syncthreads();
+    if (threadIdx.x < kClusterBlocks && part_count_here[threadIdx.x] > 0u)
+      atomicAdd(&b.part_count[threadIdx.x], part_count_here[threadIdx.x]);
+    cluster.sync();
+
+    std::uint32_t before = 0;
+    for (unsigned r = 0; r < blockIdx.x; ++r) before += b.part_count[r];
+    for (std::uint32_t tile = begin; tile < end; tile += kClusterThreads * kScanItems) {
+      const std::uint32_t c = tile + threadIdx.x * kScanItems;
+      std::uint32_t counts[kScanItems], starts[kScanItems], tile_count = 0;
+      for (int k = 0; k < kScanItems; ++k) counts[k] = c + k < end ? b.count[c + k] : 0u;
+      Scan(scan).ExclusiveSum(counts, starts, tile_count);
+      for (int k = 0; k < kScanItems; ++k)
+        if (c + k < end) args.base.arrays.cell_start[c + k] = before + starts[k];
+      before += tile_count;
+      __syncthreads();  // the scan's storage, again
+    }
+    cluster.sync();
+
+    if (blockIdx.x == 0 && threadIdx.x < kClusterBlocks) b.part_count[threadIdx.x] = 0u;  // all read them
+    for (int t = first; t < past; t += kClusterThreads) arrive(args, b, t);
+    cluster.sync();
+    for (int t = first; t < past; t += kClusterThreads) take_place(args, b, t);
+    cluster.sync();
+    for (int i = first; i < past; i += kClusterThreads) collide<PlannedArgs, true>(args, i);
+    cluster.sync();
+  }
+#endif
+}
+
 // Every cell's start (and, past the last, the living's count) from the counts.
 void scan_counts(const ParticleArrays& p, const ParticleModel& m, const BinScratch& b, cudaStream_t stream) {
   std::size_t bytes = b.scan_bytes;
   BLEEDSIM_CUDA_CHECK(cub::DeviceScan::ExclusiveSum(b.scan, bytes, b.count, p.cell_start, int(cell_count(m)) + 1, stream));
 }
 
-// Whether this build's particle kernels wait for the kernel before them: compiled for sm_90 or
-// later, not JIT-compiled from the older PTX (all of them alike: one translation unit, one list
-// of architectures).
-bool kernels_wait_for_the_last() {
-  static const bool waits = [] {
+// Whether this build's particle kernels were compiled for sm_90 or later, not JIT-compiled from the
+// older PTX (all of them alike: one translation unit, one list of architectures): only then does
+// each kernel of a whole step wait for the kernel before it, and has the cluster's frame a body.
+bool kernels_built_for_hopper() {
+  static const bool built = [] {
     cudaFuncAttributes compiled{};
     BLEEDSIM_CUDA_CHECK(cudaFuncGetAttributes(&compiled, collide_kernel<PlannedArgs, true>));
     return compiled.ptxVersion >= 90;
   }();
-  return waits;
+  return built;
+}
+
+cudaLaunchConfig_t launch_config(int blocks, int threads, cudaStream_t stream, cudaLaunchAttribute* attributes,
+                                 unsigned attribute_count) {
+  cudaLaunchConfig_t config{};
+  config.gridDim = dim3(unsigned(blocks));
+  config.blockDim = dim3(unsigned(threads));
+  config.stream = stream;
+  config.attrs = attributes;
+  config.numAttrs = attribute_count;
+  return config;
 }
 
 // kernel<<<blocks, kThreads, 0, stream>>>(args...), in a whole step allowed to start while the
@@ -206,14 +315,50 @@ void launch(void (*kernel)(P...), const char* name, int blocks, cudaStream_t str
   cudaLaunchAttribute overlap{};
   overlap.id = cudaLaunchAttributeProgrammaticStreamSerialization;
   overlap.val.programmaticStreamSerializationAllowed = 1;
-  cudaLaunchConfig_t config{};
-  config.gridDim = dim3(unsigned(blocks));
-  config.blockDim = dim3(kThreads);
-  config.stream = stream;
-  config.attrs = &overlap;
-  config.numAttrs = kWholeStep && kernels_wait_for_the_last() ? 1 : 0;
+  const cudaLaunchConfig_t config =
+      launch_config(blocks, kThreads, stream, &overlap, kWholeStep && kernels_built_for_hopper() ? 1 : 0);
   BLEEDSIM_CUDA_CHECK(cudaLaunchKernelEx(&config, kernel, args...));
   check_launch(name);
+}
+
+// The cluster's frame: one cluster of kClusterBlocks blocks.
+cudaLaunchConfig_t one_cluster(cudaStream_t stream, cudaLaunchAttribute* cluster) {
+  cluster->id = cudaLaunchAttributeClusterDimension;
+  cluster->val.clusterDim.x = kClusterBlocks;
+  cluster->val.clusterDim.y = 1;
+  cluster->val.clusterDim.z = 1;
+  return launch_config(kClusterBlocks, kClusterThreads, stream, cluster, 1);
+}
+
+// Whether this machine runs the cluster's frame: built for it, a cluster of its size fits, and
+// BLEEDSIM_CUDA_FRAMES does not ask for graphs (compute-sanitizer's racecheck faults on the cluster's
+// launch, inside the tool: docs/reliability.md).
+bool frames_run_in_one_cluster() {
+  static const bool runs = [] {
+    const char* asked = std::getenv("BLEEDSIM_CUDA_FRAMES");
+    const std::string frames = asked ? asked : "auto";
+    if (frames != "auto" && frames != "graph")
+      throw std::runtime_error("BLEEDSIM_CUDA_FRAMES=" + frames +
+                               ": expected auto (small frames in one cluster) or graph");
+    if (frames == "graph" || !kernels_built_for_hopper()) return false;
+    cudaLaunchAttribute cluster{};
+    const cudaLaunchConfig_t config = one_cluster(nullptr, &cluster);
+    int clusters = 0;
+    const bool fits = cudaOccupancyMaxActiveClusters(&clusters, frame_in_one_cluster, &config) == cudaSuccess;
+    cudaGetLastError();  // a refused query leaves its error behind; the frames then run as graphs
+    return fits && clusters > 0;
+  }();
+  return runs;
+}
+
+// The steps of `f` in the cluster's frame.
+void launch_in_one_cluster(const ParticleSteps& f, cudaStream_t stream) {
+  cudaLaunchAttribute cluster{};
+  const cudaLaunchConfig_t config = one_cluster(stream, &cluster);
+  const PlannedArgs args{f.base, f.device_steps, f.device_emitters, 0};
+  BLEEDSIM_CUDA_CHECK(cudaLaunchKernelEx(&config, frame_in_one_cluster, args, f.count,
+                                         bin_scratch(f.base.arrays, cell_count(f.base.model))));
+  check_launch("frame_in_one_cluster");
 }
 
 // The bin's launches over `live_threads` threads; `shape` gives the arrays and the model.
@@ -290,7 +435,7 @@ class StepGraph final : public TwinCache {
  public:
   StepGraph() {
     BLEEDSIM_CUDA_CHECK(cudaStreamCreate(&stream_));
-    kernels_wait_for_the_last();  // asked here, not first while a graph is being captured
+    frames_run_in_one_cluster();  // asked here, not first while a graph is being captured
   }
   ~StepGraph() override {
     if (exec_) cudaGraphExecDestroy(exec_);
@@ -305,12 +450,16 @@ class StepGraph final : public TwinCache {
 
   void run(const ParticleSteps& f) {
     copy_to_device(f);
+    int most_live = 0;
+    for (int s = 0; s < f.count; ++s) most_live = std::max(most_live, f.steps[s].live_count);
+    if (most_live <= kClusterMostLive && cell_count(f.base.model) < kClusterMostCells && frames_run_in_one_cluster()) {
+      launch_in_one_cluster(f, stream_);
+      return;
+    }
     if (f.count == 1) {  // a step on its own (between the instrument's): its launches, directly
       launch_step(PlannedArgs{f.base, f.device_steps, f.device_emitters, 0}, f.steps[0].live_count, stream_);
       return;
     }
-    int most_live = 0;
-    for (int s = 0; s < f.count; ++s) most_live = std::max(most_live, f.steps[s].live_count);
     const GraphShape shape{f.base.arrays.position, f.device_steps, f.device_emitters, f.count,
                            graph_threads(most_live, 16 * kThreads, f.base.arrays.capacity)};
     if (!exec_ || !(shape == shape_)) capture(f, shape);
@@ -417,7 +566,7 @@ class StepGraph final : public TwinCache {
 }  // namespace
 
 std::size_t particle_sort_scratch_cuda(int capacity, std::uint32_t cells) {
-  return aligned((std::size_t(cells) + 1) * sizeof(std::uint32_t)) +
+  return aligned((std::size_t(cells) + 1) * sizeof(std::uint32_t)) + aligned(kClusterBlocks * sizeof(std::uint32_t)) +
          2 * aligned(std::size_t(capacity) * sizeof(std::uint32_t)) + scan_bytes_for(cells);
 }
 
