@@ -48,7 +48,8 @@ constexpr int kClusterBlocks = 8;
 constexpr int kClusterThreads = 512;
 constexpr int kScanItems = 4;
 // The most live particles, and cells, of a frame that runs in one cluster: two particles a thread
-// (past them the graph's launches over the whole GPU catch up), and two passes of a block's scan.
+// (a bound, not a measured crossing: the scenes timed, a few thousand live, run faster so than as
+// graphs), and two passes of a block's scan.
 constexpr int kClusterMostLive = 2 * kClusterBlocks * kClusterThreads;
 constexpr std::uint32_t kClusterMostCells = 2 * kClusterBlocks * kClusterThreads * kScanItems;
 
