@@ -5,9 +5,12 @@
 #include <csignal>
 #include <cstdlib>
 #include <exception>
+#include <functional>
 #include <initializer_list>
 #include <iostream>
+#include <memory>
 #include <string>
+#include <vector>
 
 #include "cli/commands.h"
 #include "core/runtime/build_info.h"
@@ -19,6 +22,20 @@ namespace {
 using bleedsim::BackendChoice;
 using bleedsim::SynthSpec;
 using namespace bleedsim::cli;
+
+// A subcommand, and what runs it once the command line has chosen it. The options it was given
+// live with `run`, which CLI11 filled in while parsing.
+struct Command {
+  CLI::App* app;
+  std::function<int()> run;
+};
+
+// The one of `commands` the command line chose.
+int run_chosen(const std::vector<Command>& commands) {
+  for (const Command& command : commands)
+    if (*command.app) return command.run();
+  return kExitFailed;
+}
 
 // --backend and --threads, shared by the commands that run a scene.
 struct BackendOptions {
@@ -54,12 +71,24 @@ std::string decimal_seed(std::string& text) {
   return "";
 }
 
+// The options of `bleedsim study` or `study merge`, and --no-plots beside them: CLI11 sets a flag's
+// own bool, of which `plots` is the opposite.
+template <class Options>
+struct WithNoPlots {
+  Options options;
+  bool no_plots = false;
+
+  const Options& parsed() {
+    options.plots = !no_plots;
+    return options;
+  }
+};
+
 // `bleedsim study` over the MPI ranks a launcher started (or this process alone): every rank runs
 // its share of the jobs; an error ends every rank, and only rank 0 says it (every rank would say
 // the same). The ranks end MPI together when Ranks goes.
-int study_on_ranks(StudyOptions& study, bool no_plots) {
+int study_on_ranks(const StudyOptions& study) {
   if (study.scenario.empty()) throw bleedsim::InputError({}, "study", "needs a scenario file (or: bleedsim study merge SHARDS...)");
-  study.plots = !no_plots;
   bleedsim::Ranks ranks(study.backend != "cpu");
   try {
     return study_command(study, ranks);
@@ -72,119 +101,154 @@ int study_on_ranks(StudyOptions& study, bool no_plots) {
   }
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  CLI::App app{"bleedsim: bleeding effects for endoscopic sinus surgery simulation"};
-  app.set_version_flag("--version", std::string("bleedsim ") + bleedsim::version() + " (" +
-                                        bleedsim::git_sha() + ")");
-  app.require_subcommand(1);
-
-  RunOptions run;
-  BackendOptions run_backend;
-  bool no_hdf5 = false;
-  CLI::App* run_cmd = app.add_subcommand("run", "run a scenario and write its frames (HDF5, PNG)");
-  run_cmd->add_option("scenario", run.scenario, "scenario file (.toml)")->required();
-  add_backend_options(*run_cmd, run_backend);
-  run_cmd->add_option("-o,--out", run.out_dir, "output folder (default: the scenario's [output].dir)");
-  run_cmd->add_option("--png-every", run.png_every,
-                      "write a PNG of frame 0, every Nth frame and the last (0: none)")
+Command add_run_command(CLI::App& app) {
+  struct Given {
+    RunOptions run;
+    BackendOptions backend;
+    bool no_hdf5 = false;
+  };
+  const auto given = std::make_shared<Given>();
+  RunOptions& run = given->run;
+  CLI::App* command = app.add_subcommand("run", "run a scenario and write its frames (HDF5, PNG)");
+  command->add_option("scenario", run.scenario, "scenario file (.toml)")->required();
+  add_backend_options(*command, given->backend);
+  command->add_option("-o,--out", run.out_dir, "output folder (default: the scenario's [output].dir)");
+  command->add_option("--png-every", run.png_every, "write a PNG of frame 0, every Nth frame and the last (0: none)")
       ->check(CLI::Range(0, 1000000));
-  run_cmd->add_option("--contact-sheet", run.contact_sheet,
+  command->add_option("--contact-sheet", run.contact_sheet,
                       "write contact_sheet.png: N frames from the first to the last in a grid (0: none)")
       ->check(CLI::Range(0, 64));
-  run_cmd->add_flag("--no-hdf5", no_hdf5, "do not write frames.h5");
-  run_cmd->add_option("--output-threads", run.output_threads,
+  command->add_flag("--no-hdf5", given->no_hdf5, "do not write frames.h5");
+  command->add_option("--output-threads", run.output_threads,
                       "threads deflating and encoding the frames for the files (0: one per hardware thread)")
       ->check(CLI::Range(0, 4096))
       ->capture_default_str();
-  run_cmd->add_flag("-q,--quiet", run.quiet, "print nothing but errors");
+  command->add_flag("-q,--quiet", run.quiet, "print nothing but errors");
+  return {command, [given] {
+            given->run.backend = given->backend.choice();
+            given->run.hdf5 = !given->no_hdf5;
+            return run_command(given->run);
+          }};
+}
 
-  std::string validate_path;
-  CLI::App* validate_cmd = app.add_subcommand("validate", "check a scenario and describe it");
-  validate_cmd->add_option("scenario", validate_path, "scenario file (.toml)")->required();
+Command add_validate_command(CLI::App& app) {
+  const auto scenario = std::make_shared<std::string>();
+  CLI::App* command = app.add_subcommand("validate", "check a scenario and describe it");
+  command->add_option("scenario", *scenario, "scenario file (.toml)")->required();
+  return {command, [scenario] { return validate_command(*scenario); }};
+}
 
-  std::string hash_path;
-  BackendOptions hash_backend;
-  CLI::App* hash_cmd = app.add_subcommand(
-      "hash", "print each frame's per-field FNV-1a 64 hashes (writes no files)");
-  hash_cmd->add_option("scenario", hash_path, "scenario file (.toml)")->required();
-  add_backend_options(*hash_cmd, hash_backend);
+Command add_hash_command(CLI::App& app) {
+  struct Given {
+    std::string scenario;
+    BackendOptions backend;
+  };
+  const auto given = std::make_shared<Given>();
+  CLI::App* command =
+      app.add_subcommand("hash", "print each frame's per-field FNV-1a 64 hashes (writes no files)");
+  command->add_option("scenario", given->scenario, "scenario file (.toml)")->required();
+  add_backend_options(*command, given->backend);
+  return {command, [given] { return hash_command(given->scenario, given->backend.choice()); }};
+}
 
-  StudyOptions study;
-  std::string knob_names;
-  for (const bleedsim::Knob& knob : bleedsim::knobs()) knob_names += std::string(knob_names.empty() ? "" : ", ") + knob.name;
-  CLI::App* study_cmd = app.add_subcommand(
+// "name1, name2, ...": every knob a study may climb, for --knob's help.
+std::string knob_names() {
+  std::string names;
+  for (const bleedsim::Knob& knob : bleedsim::knobs()) names += std::string(names.empty() ? "" : ", ") + knob.name;
+  return names;
+}
+
+Command add_study_merge_command(CLI::App& study) {
+  const auto given = std::make_shared<WithNoPlots<StudyMergeOptions>>();
+  StudyMergeOptions& merge = given->options;
+  CLI::App* command = study.add_subcommand(
+      "merge", "put the shard files of one study (--shard i/K) back together and analyse them, as one process would");
+  command->add_option("shards", merge.shards, "the study's shard files (.bleedshard), in any order")->required();
+  command->add_option("-o,--out", merge.out_dir, "output folder (default out/study/<scene>)");
+  command->add_flag("--no-plots", given->no_plots, "write the files only (plot later with scripts/plot-study)");
+  command->add_flag("-q,--quiet", merge.quiet, "print only the files written and errors");
+  return {command, [given] { return study_merge_command(given->parsed()); }};
+}
+
+Command add_study_command(CLI::App& app) {
+  const auto given = std::make_shared<WithNoPlots<StudyOptions>>();
+  StudyOptions& study = given->options;
+  CLI::App* command = app.add_subcommand(
       "study", "what accuracy costs in time, and whether the reference is converged: each accuracy knob "
                "climbed as a ladder, every setting an ensemble over seeds, timed and compared with the reference "
                "(docs/accuracy.md)");
-  study_cmd->add_option("scenario", study.scenario, "scenario file (.toml)");
-  study_cmd->add_option("-k,--knob", study.knobs,
-                        "a knob and its ladder's levels, as name=v1,v2,...; the finest is the reference's; repeat "
-                        "for more (default: every knob the scene has, at its default levels). Knobs: " + knob_names +
-                            " (the particle model has no solver iterations: one neighbour pass a sub-step)");
-  study_cmd->add_option("-b,--backend", study.backend,
-                        "auto (CUDA and the CPU where a device is, else the CPU), cpu, cuda or both")
+  command->add_option("scenario", study.scenario, "scenario file (.toml)");
+  command->add_option("-k,--knob", study.knobs,
+                      "a knob and its ladder's levels, as name=v1,v2,...; the finest is the reference's; repeat "
+                      "for more (default: every knob the scene has, at its default levels). Knobs: " + knob_names() +
+                          " (the particle model has no solver iterations: one neighbour pass a sub-step)");
+  command->add_option("-b,--backend", study.backend,
+                      "auto (CUDA and the CPU where a device is, else the CPU), cpu, cuda or both")
       ->check(CLI::IsMember({"auto", "cpu", "cuda", "both"}))
       ->capture_default_str();
-  study_cmd->add_option("-s,--seeds", study.seeds,
-                        "runs of each setting, the scene's seed and the next ones (at least 2: a confidence "
-                        "interval needs two)")
+  command->add_option("-s,--seeds", study.seeds,
+                      "runs of each setting, the scene's seed and the next ones (at least 2: a confidence "
+                      "interval needs two)")
       ->capture_default_str();
-  study_cmd->add_option("-j,--threads", study.threads, "CPU threads for the cpu backend (0: one per hardware thread)")
+  command->add_option("-j,--threads", study.threads, "CPU threads for the cpu backend (0: one per hardware thread)")
       ->check(CLI::Range(0, 4096))
       ->capture_default_str();
-  study_cmd->add_option("--duration-s", study.duration_s, "run each setting this long instead of the scene's duration")
+  command->add_option("--duration-s", study.duration_s, "run each setting this long instead of the scene's duration")
       ->check(CLI::Range(0.001, 86400.0));
-  study_cmd->add_option("-o,--out", study.out_dir, "output folder (default out/study/<scene>)");
-  bool no_plots = false;
-  study_cmd->add_flag("--no-plots", no_plots, "write study.csv, ladders.csv and study.h5 only (plot later with scripts/plot-study)");
-  study_cmd->add_flag("-q,--quiet", study.quiet, "print only the files written and errors");
-  study_cmd->add_option("--shard", study.shard,
-                        "i/K: run only part i of K (0 <= i < K) and write OUT/shard-i-of-K.bleedshard, for a "
-                        "cluster's job array; `bleedsim study merge` analyses the K files (docs/scale-out.md)");
-  StudyMergeOptions merge;
-  CLI::App* merge_cmd = study_cmd->add_subcommand(
-      "merge", "put the shard files of one study (--shard i/K) back together and analyse them, as one process would");
-  merge_cmd->add_option("shards", merge.shards, "the study's shard files (.bleedshard), in any order")->required();
-  merge_cmd->add_option("-o,--out", merge.out_dir, "output folder (default out/study/<scene>)");
-  bool merge_no_plots = false;
-  merge_cmd->add_flag("--no-plots", merge_no_plots, "write the files only (plot later with scripts/plot-study)");
-  merge_cmd->add_flag("-q,--quiet", merge.quiet, "print only the files written and errors");
+  command->add_option("-o,--out", study.out_dir, "output folder (default out/study/<scene>)");
+  command->add_flag("--no-plots", given->no_plots,
+                    "write study.csv, ladders.csv and study.h5 only (plot later with scripts/plot-study)");
+  command->add_flag("-q,--quiet", study.quiet, "print only the files written and errors");
+  command->add_option("--shard", study.shard,
+                      "i/K: run only part i of K (0 <= i < K) and write OUT/shard-i-of-K.bleedshard, for a "
+                      "cluster's job array; `bleedsim study merge` analyses the K files (docs/scale-out.md)");
+  const Command merge = add_study_merge_command(*command);
+  return {command, [given, merge] { return *merge.app ? merge.run() : study_on_ranks(given->parsed()); }};
+}
 
-  CLI::App* info_cmd = app.add_subcommand("info", "version, build flags and available backends");
+Command add_info_command(CLI::App& app) {
+  return {app.add_subcommand("info", "version, build flags and available backends"), info_command};
+}
 
-  std::string params_format = "text";
-  CLI::App* params_cmd = app.add_subcommand(
+Command add_params_command(CLI::App& app) {
+  const auto format = std::make_shared<std::string>("text");
+  CLI::App* command = app.add_subcommand(
       "params", "every scenario table's keys: type, unit, default, bounds, rules (docs/scenario-format.md)");
-  params_cmd->add_flag_callback("--json", [&] { params_format = "json"; }, "as JSON, for tools");
-  params_cmd->add_flag_callback("--markdown", [&] { params_format = "markdown"; },
-                                "as the tables docs/scenario-format.md holds (scripts/update-param-docs)");
+  command->add_flag_callback("--json", [format] { *format = "json"; }, "as JSON, for tools");
+  command->add_flag_callback("--markdown", [format] { *format = "markdown"; },
+                             "as the tables docs/scenario-format.md holds (scripts/update-param-docs)");
+  return {command, [format] { return params_command(*format); }};
+}
 
-  CLI::App* trace_cmd = app.add_subcommand("trace", "recorded Falcon stylus traces (docs/traces.md)");
-  trace_cmd->require_subcommand(1);
-  std::string trace_path;
-  double repair_gap_ms = 0.0;
-  CLI::App* trace_info_cmd = trace_cmd->add_subcommand("info", "check a trace and describe it: duration, rate, "
-                                                               "workspace used, cuts, repairs");
-  trace_info_cmd->add_option("trace", trace_path, "trace file (.csv)")->required();
-  trace_info_cmd->add_option("--repair-gap-ms", repair_gap_ms,
-                             "fill dropouts up to this long by interpolation instead of refusing them (0: none)")
+Command add_trace_info_command(CLI::App& trace) {
+  struct Given {
+    std::string path;
+    double repair_gap_ms = 0.0;
+  };
+  const auto given = std::make_shared<Given>();
+  CLI::App* command = trace.add_subcommand("info", "check a trace and describe it: duration, rate, "
+                                                   "workspace used, cuts, repairs");
+  command->add_option("trace", given->path, "trace file (.csv)")->required();
+  command->add_option("--repair-gap-ms", given->repair_gap_ms,
+                      "fill dropouts up to this long by interpolation instead of refusing them (0: none)")
       ->check(CLI::Range(0.0, 1000.0));
+  return {command, [given] { return trace_info_command(given->path, given->repair_gap_ms); }};
+}
 
-  // Ranges are checked by synthesize_trace, which names the option at fault.
-  SynthOptions synth;
-  SynthSpec& spec = synth.spec;
-  CLI::App* trace_synth_cmd = trace_cmd->add_subcommand(
+// Ranges are checked by synthesize_trace, which names the option at fault.
+Command add_trace_synth_command(CLI::App& trace) {
+  const auto synth = std::make_shared<SynthOptions>();
+  SynthSpec& spec = synth->spec;
+  CLI::App* command = trace.add_subcommand(
       "synth", "write a realistic synthetic trace: cutting strokes with a hand tremor, the same for the same seed");
-  trace_synth_cmd->add_option("-o,--out", synth.out, "trace file to write (.csv)")->required();
-  trace_synth_cmd->add_option("--seed", spec.seed, "draws the tremor")
+  command->add_option("-o,--out", synth->out, "trace file to write (.csv)")->required();
+  command->add_option("--seed", spec.seed, "draws the tremor")
       ->transform(CLI::Validator(decimal_seed, ""))
       ->capture_default_str();
-  trace_synth_cmd->add_option("--stroke", synth.strokes,
-                              "a stroke from (x0, y0) to (x1, y1), mm in the device frame (x right, y up), as "
-                              "x0,y0,x1,y1[,buttons]: the grip buttons held along it, 1 (cut) unless given, 2 for the "
-                              "suction's; repeat for more strokes (default: one cut, -10,0,10,0)")
+  command->add_option("--stroke", synth->strokes,
+                      "a stroke from (x0, y0) to (x1, y1), mm in the device frame (x right, y up), as "
+                      "x0,y0,x1,y1[,buttons]: the grip buttons held along it, 1 (cut) unless given, 2 for the "
+                      "suction's; repeat for more strokes (default: one cut, -10,0,10,0)")
       ->allow_extra_args(false);
   struct SynthNumber {
     const char* option;
@@ -202,36 +266,22 @@ int main(int argc, char** argv) {
            {"--pause-s", &spec.pause_s, "above the tissue before the first stroke, between strokes and after the last"},
            {"--tremor-um", &spec.tremor_um, "peak hand tremor per axis, 8-12 Hz (0: none)"},
            {"--rate-hz", &spec.rate_hz, "samples per second (900 to 1100)"}})
-    trace_synth_cmd->add_option(number.option, *number.value, number.help)->capture_default_str();
-  trace_synth_cmd->add_flag("--force", synth.force, "overwrite the file if it exists");
+    command->add_option(number.option, *number.value, number.help)->capture_default_str();
+  command->add_flag("--force", synth->force, "overwrite the file if it exists");
+  return {command, [synth] { return trace_synth_command(*synth); }};
+}
 
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
-    return code == 0 ? 0 : kExitBadInput;
-  }
+Command add_trace_command(CLI::App& app) {
+  CLI::App* command = app.add_subcommand("trace", "recorded Falcon stylus traces (docs/traces.md)");
+  command->require_subcommand(1);
+  const std::vector<Command> subcommands = {add_trace_info_command(*command), add_trace_synth_command(*command)};
+  return {command, [subcommands] { return run_chosen(subcommands); }};
+}
 
-  // A file size limit (ulimit -f) must end a write with EFBIG, which the writers report, not kill
-  // the process without a word.
-  std::signal(SIGXFSZ, SIG_IGN);
+// The chosen command's exit code; an error it ends with is said in one line.
+int run_reporting_errors(const std::vector<Command>& commands) {
   try {
-    if (*run_cmd) {
-      run.backend = run_backend.choice();
-      run.hdf5 = !no_hdf5;
-      return run_command(run);
-    }
-    if (*validate_cmd) return validate_command(validate_path);
-    if (*merge_cmd) {
-      merge.plots = !merge_no_plots;
-      return study_merge_command(merge);
-    }
-    if (*study_cmd) return study_on_ranks(study, no_plots);
-    if (*hash_cmd) return hash_command(hash_path, hash_backend.choice());
-    if (*info_cmd) return info_command();
-    if (*params_cmd) return params_command(params_format);
-    if (*trace_info_cmd) return trace_info_command(trace_path, repair_gap_ms);
-    if (*trace_synth_cmd) return trace_synth_command(synth);
+    return run_chosen(commands);
   } catch (const bleedsim::InputError& e) {
     std::cerr << "bleedsim: error: " << e.what() << "\n";
     return kExitBadInput;
@@ -243,5 +293,27 @@ int main(int argc, char** argv) {
     std::cerr << "bleedsim: failed: " << what << "\n";
     return kExitFailed;
   }
-  return kExitFailed;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"bleedsim: bleeding effects for endoscopic sinus surgery simulation"};
+  app.set_version_flag("--version", std::string("bleedsim ") + bleedsim::version() + " (" +
+                                        bleedsim::git_sha() + ")");
+  app.require_subcommand(1);
+  // In the order `bleedsim --help` lists them.
+  const std::vector<Command> commands = {add_run_command(app),   add_validate_command(app), add_hash_command(app),
+                                         add_study_command(app), add_info_command(app),     add_params_command(app),
+                                         add_trace_command(app)};
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? 0 : kExitBadInput;
+  }
+  // A file size limit (ulimit -f) must end a write with EFBIG, which the writers report, not kill
+  // the process without a word.
+  std::signal(SIGXFSZ, SIG_IGN);
+  return run_reporting_errors(commands);
 }
