@@ -122,6 +122,234 @@ std::runtime_error write_failure(const std::exception& e, long frames_done, cons
   return std::runtime_error(std::string(e.what()) + "; " + kept + ", the folder's last whole run left as it was");
 }
 
+// The scenario with what the command line says over its [output] table.
+Scenario scenario_for_run(const RunOptions& options) {
+  Scenario scenario = load_scenario(options.scenario);
+  OutputSpec& out = scenario.output;
+  if (options.png_every) out.png_every = *options.png_every;
+  if (options.contact_sheet) out.contact_sheet = *options.contact_sheet;
+  if (options.out_dir) out.dir = *options.out_dir;
+  return scenario;
+}
+
+void announce(const Simulation& sim) {
+  const Scene& s = sim.scene();
+  const long frames = s.frame_count();
+  std::printf("bleedsim: %s: %ld frames of %d x %d px on %s (%s; %s)\n", s.name.c_str(), frames,
+              s.domain.width_px, s.domain.height_px, to_string(sim.backend().kind()),
+              sim.backend().device_name().c_str(), sim.backend_reason().c_str());
+  if (s.trace) describe_replay(s);
+}
+
+// The contact sheets a run fills, when [output].contact_sheet asks for them: the panel's and, for a
+// scene with a [view], the endoscope's.
+struct ContactSheets {
+  std::unique_ptr<ContactSheet> panel, view;
+};
+
+ContactSheets contact_sheets(const Scene& s, const Scenario& scenario) {
+  ContactSheets sheets;
+  const int cells = scenario.output.contact_sheet;
+  if (cells > 0)
+    sheets.panel = std::make_unique<ContactSheet>(s.frame_count(), cells, s.domain.width_px, s.domain.height_px);
+  if (cells > 0 && scenario.view)
+    sheets.view = std::make_unique<ContactSheet>(s.frame_count(), cells, scenario.view->width_px,
+                                                 scenario.view->height_px);
+  return sheets;
+}
+
+// Where each frame goes: the HDF5 file (when there is one), the PNGs, the sheets and, for a scene
+// with a [view], the mesh drawn with the frame's texture from the scenario's endoscope.
+FrameOutputs frame_outputs(const Scene& s, const Scenario& scenario, const RunFiles& files, Hdf5FrameWriter* hdf5,
+                           ContactSheets& sheets) {
+  FrameOutputs outputs;
+  outputs.hdf5 = hdf5;
+  outputs.png_folder = files.partial("png");
+  outputs.png_every = scenario.output.png_every;
+  outputs.frames = s.frame_count();
+  outputs.width = s.domain.width_px;
+  outputs.height = s.domain.height_px;
+  if (scenario.view)
+    outputs.view = [&s, &view = *scenario.view](const std::uint8_t* frame) {
+      const std::size_t bytes = std::size_t(s.domain.width_px) * std::size_t(s.domain.height_px) * 4;
+      return render_view(s.mesh->mesh(),
+                         Image{s.domain.width_px, s.domain.height_px, std::vector<std::uint8_t>(frame, frame + bytes)},
+                         view);
+    };
+  outputs.sheet = sheets.panel.get();
+  outputs.view_sheet = sheets.view.get();
+  return outputs;
+}
+
+// The threads encoding the frames: --output-threads, or one per hardware thread.
+int output_workers(const RunOptions& options) {
+  return options.output_threads > 0 ? options.output_threads : int(std::max(1u, std::thread::hardware_concurrency()));
+}
+
+std::size_t frame_bytes(const std::vector<FieldLayout>& specs) {
+  std::size_t bytes = 0;
+  for (const FieldLayout& spec : specs) bytes += spec.bytes();
+  return bytes;
+}
+
+// A frame's fields go to the host while the next frame computes (on CUDA; the CPU copies at
+// once): two downloads in turn, into the backend's host memory; a frame is queued for its files
+// once its copies are whole, after the next frame has been computed.
+class FramesToHost {
+ public:
+  FramesToHost(Simulation& sim, const std::vector<FieldLayout>& specs, OutputQueue& output)
+      : sim_(sim),
+        specs_(specs),
+        output_(output),
+        downloads_{sim.make_download(), sim.make_download()},
+        empty_field_{HostAllocator<std::uint8_t>(&sim.host_memory())} {}
+
+  // Starts the copies of frame k, just computed, and queues the frame before, whose copies ran
+  // while this one computed.
+  void copy(long k) {
+    FrameJob job = output_.spare();
+    job.fields.resize(specs_.size(), empty_field_);
+    Download& download = *downloads_[k % 2];
+    for (std::size_t f = 0; f < specs_.size(); ++f) {
+      const FieldView field = sim_.field(specs_[f].name);
+      job.fields[f].resize(field.field->bytes());
+      download.add(job.fields[f].data(), field.data, field.field->bytes());
+    }
+    job.frame = k;
+    job.time_s = sim_.time_s();
+    job.ticks = sim_.haptic_ticks();
+    hand_over();
+    in_transit_ = std::move(job);
+    carrying_ = &download;
+  }
+
+  // Queues the frame whose copies are under way, once they are whole.
+  void hand_over() {
+    if (!carrying_) return;
+    carrying_->finish();
+    carrying_ = nullptr;
+    output_.push(std::move(in_transit_));
+  }
+
+ private:
+  Simulation& sim_;
+  const std::vector<FieldLayout>& specs_;
+  OutputQueue& output_;
+  const std::unique_ptr<Download> downloads_[2];
+  const HostBytes empty_field_;
+  FrameJob in_transit_;
+  Download* carrying_ = nullptr;  // in_transit_'s download, while it has one
+};
+
+// What a run made: its frames' and haptic ticks' compute times, and what it wrote.
+struct RunTally {
+  double simulate_s = 0.0;
+  std::vector<double> frame_seconds, tick_seconds;
+  // Frames written so far: a write that fails (a full disk, a file size limit, an I/O error) ends the run
+  // with the frames before it kept, and leaves the folder's last whole run as it was.
+  long written = 0;
+  long pngs = 0;  // PNG files written, counted on the output's writer thread
+};
+
+// The frames, one after another until the last or an interrupt, each queued for its files as it is
+// made; returns once every frame made is written, with `tally.written` counting them, a failure's
+// too.
+void make_frames(Simulation& sim, const std::vector<FieldLayout>& specs, OutputQueue& output, Progress& progress,
+                 RunTally& tally) {
+  const long frames = sim.scene().frame_count();
+  FramesToHost to_host(sim, specs, output);
+  try {
+    for (long k = 0; k < frames && !interrupted; ++k) {
+      const Clock::time_point step_start = Clock::now();
+      sim.step();
+      to_host.copy(k);
+      tally.frame_seconds.push_back(seconds_since(step_start));
+      tally.simulate_s += tally.frame_seconds.back();
+      tally.tick_seconds.insert(tally.tick_seconds.end(), sim.haptic_tick_seconds().begin(),
+                                sim.haptic_tick_seconds().end());
+      progress.update(k + 1);
+    }
+    // Every frame made is written, an interrupted run's too.
+    to_host.hand_over();
+    output.drain();
+  } catch (...) {
+    // What was made before the failure is written (or fails too) before the count is taken.
+    try {
+      to_host.hand_over();
+    } catch (...) {
+    }
+    try {
+      output.drain();
+    } catch (...) {
+    }
+    tally.written = output.written();
+    throw;
+  }
+  tally.written = output.written();
+}
+
+// The run's files in the partial folder: the frames as they are made, into frames.h5 and the PNGs,
+// and then the contact sheets.
+RunTally write_run(const RunOptions& options, const Scenario& scenario, Simulation& sim, const RunFiles& files,
+                   ContactSheets& sheets, Progress& progress) {
+  const Scene& s = sim.scene();
+  const long frames = s.frame_count();
+  const std::vector<FieldLayout> specs = fields_to_write(sim, scenario.output.fields);
+  RunTally tally;
+  try {
+    std::unique_ptr<Hdf5FrameWriter> writer;
+    if (options.hdf5)
+      writer = std::make_unique<Hdf5FrameWriter>(files.partial("frames.h5").string(), specs,
+                                                 provenance(sim, scenario), scenario.output.deflate_level,
+                                                 s.trace.has_value());
+    if (scenario.output.png_every > 0) fs::create_directory(files.partial("png"));
+    // Each frame's outputs, encoded on the output's workers and written on its writer thread, frame
+    // after frame: the simulation goes on meanwhile.
+    FrameOutput frame_output(frame_outputs(s, scenario, files, writer.get(), sheets));
+    const int workers = output_workers(options);
+    {
+      OutputQueue output(workers, frames_in_flight(workers, frame_bytes(specs)), frame_output.work());
+      make_frames(sim, specs, output, progress, tally);
+    }
+    tally.pngs = frame_output.pngs();
+    progress.clear();
+    if (writer) writer->finish(tally.written == frames);
+    // An interrupted run's sheet shows the frames it reached; the cells after stay dark.
+    if (sheets.panel) sheets.panel->write(files.partial("contact_sheet.png").string());
+    if (sheets.view) sheets.view->write(files.partial("view_contact_sheet.png").string());
+  } catch (const std::exception& e) {
+    progress.clear();
+    throw write_failure(e, tally.written, files);
+  }
+  return tally;
+}
+
+// What the run wrote, where it is now that it is published.
+std::string files_written(const RunOptions& options, const RunFiles& files, const RunTally& tally,
+                          const ContactSheets& sheets) {
+  std::string wrote = options.hdf5 ? files.published("frames.h5").string() : std::string("no HDF5");
+  if (tally.pngs > 0) wrote += " and " + std::to_string(tally.pngs) + " PNGs in " + files.published("png").string();
+  if (sheets.panel) wrote += " and " + files.published("contact_sheet.png").string();
+  if (sheets.view) wrote += " and " + files.published("view_contact_sheet.png").string();
+  return wrote;
+}
+
+// How long the run took, its frames' and haptic ticks' compute against their budgets, and what it
+// wrote.
+void print_summary(const Simulation& sim, const RunTally& tally, double wall_s, const std::string& wrote) {
+  const Scene& s = sim.scene();
+  const long done = sim.frames_done();
+  std::printf("bleedsim: %ld frames in %.2f s (%.2f ms/frame, simulation %.2f ms/frame) on %s (%s); wrote %s\n",
+              done, wall_s, 1000.0 * wall_s / double(done), 1000.0 * tally.simulate_s / double(done),
+              to_string(sim.backend().kind()), sim.backend().device_name().c_str(), wrote.c_str());
+  std::printf("bleedsim: frame compute %s\n",
+              describe_against_budget(percentiles_of(tally.frame_seconds), "frames", 1.0 / s.frame_rate_hz).c_str());
+  if (s.trace)
+    std::printf("bleedsim: haptic tick compute %s; %zu cuts made\n",
+                describe_against_budget(percentiles_of(tally.tick_seconds), "ticks", kHapticBudget_s).c_str(),
+                sim.cuts().size() - s.cuts.size());
+}
+
 }  // namespace
 
 std::unique_ptr<Simulation> make_simulation(const Scenario& scenario, const BackendChoice& backend) {
@@ -133,168 +361,36 @@ std::unique_ptr<Simulation> make_simulation(const Scenario& scenario, const Back
 }
 
 int run_command(const RunOptions& options) {
-  Scenario scenario = load_scenario(options.scenario);
-  OutputSpec& out = scenario.output;
-  if (options.png_every) out.png_every = *options.png_every;
-  if (options.contact_sheet) out.contact_sheet = *options.contact_sheet;
-  if (options.out_dir) out.dir = *options.out_dir;
+  const Scenario scenario = scenario_for_run(options);
   const std::string dir_key = output_dir_key(options, scenario);
   const SourcePlace dir_place = options.out_dir ? SourcePlace{} : scenario.place_of(dir_key);
-
   const std::unique_ptr<Simulation> made = make_simulation(scenario, options.backend);
   Simulation& sim = *made;
-  const Scene& s = sim.scene();
-  const long frames = s.frame_count();
-  const int png_every = out.png_every;
 
   // Everything about the input is checked; only now is anything made on disk: the folder, held by
   // this run alone, and in it the partial folder this run writes into (docs/reliability.md).
-  OutputFolder folder(out.dir, dir_place, dir_key);
+  OutputFolder folder(scenario.output.dir, dir_place, dir_key);
   RunFiles files(folder.path());
   folder.keep();
-  const std::vector<FieldLayout> specs = fields_to_write(sim, out.fields);
-  std::unique_ptr<ContactSheet> sheet, view_sheet;
-  if (out.contact_sheet > 0)
-    sheet = std::make_unique<ContactSheet>(frames, out.contact_sheet, s.domain.width_px, s.domain.height_px);
-  const std::optional<ViewCamera>& view = scenario.view;
-  if (out.contact_sheet > 0 && view)
-    view_sheet = std::make_unique<ContactSheet>(frames, out.contact_sheet, view->width_px, view->height_px);
-  // The mesh drawn with frame k's texture, from the scenario's endoscope.
-  const auto view_of = [&](const std::uint8_t* frame) {
-    const std::size_t bytes = std::size_t(s.domain.width_px) * std::size_t(s.domain.height_px) * 4;
-    return render_view(s.mesh->mesh(),
-                       Image{s.domain.width_px, s.domain.height_px, std::vector<std::uint8_t>(frame, frame + bytes)}, *view);
-  };
-
-  if (!options.quiet)
-    std::printf("bleedsim: %s: %ld frames of %d x %d px on %s (%s; %s)\n", s.name.c_str(), frames,
-                s.domain.width_px, s.domain.height_px, to_string(sim.backend().kind()),
-                sim.backend().device_name().c_str(), sim.backend_reason().c_str());
-  if (!options.quiet && s.trace) describe_replay(s);
+  ContactSheets sheets = contact_sheets(sim.scene(), scenario);
+  if (!options.quiet) announce(sim);
   std::fflush(stdout);
 
+  const long frames = sim.scene().frame_count();
   InterruptGuard guard;
   Progress progress(frames, !options.quiet && isatty(STDERR_FILENO));
   const Clock::time_point start = Clock::now();
-  double simulate_s = 0.0;
-  std::vector<double> frame_seconds, tick_seconds;
-  // Frames written so far: a write that fails (a full disk, a file size limit, an I/O error) ends the run
-  // with the frames before it kept, and leaves the folder's last whole run as it was.
-  long written = 0;
-  long pngs = 0;  // PNG files written, counted on the output's writer thread
-  try {
-    std::unique_ptr<Hdf5FrameWriter> writer;
-    if (options.hdf5)
-      writer = std::make_unique<Hdf5FrameWriter>(files.partial("frames.h5").string(), specs,
-                                                 provenance(sim, scenario), out.deflate_level, s.trace.has_value());
-    if (png_every > 0) fs::create_directory(files.partial("png"));
-    // Each frame's outputs, encoded on the output's workers and written on its writer thread, frame
-    // after frame: the simulation goes on meanwhile.
-    FrameOutputs outputs;
-    outputs.hdf5 = writer.get();
-    outputs.png_folder = files.partial("png");
-    outputs.png_every = png_every;
-    outputs.frames = frames;
-    outputs.width = s.domain.width_px;
-    outputs.height = s.domain.height_px;
-    if (view) outputs.view = view_of;
-    outputs.sheet = sheet.get();
-    outputs.view_sheet = view_sheet.get();
-    FrameOutput frame_output(std::move(outputs));
-    const int workers = options.output_threads > 0 ? options.output_threads
-                                                   : int(std::max(1u, std::thread::hardware_concurrency()));
-    std::size_t frame_bytes = 0;
-    for (const FieldLayout& spec : specs) frame_bytes += spec.bytes();
-    {
-      OutputQueue output(workers, frames_in_flight(workers, frame_bytes), frame_output.work());
-      // A frame's fields go to the host while the next frame computes (on CUDA; the CPU copies at
-      // once): two downloads in turn, into the backend's host memory; a frame is queued for its files
-      // once its copies are whole, after the next frame has been computed.
-      const std::unique_ptr<Download> downloads[2] = {sim.make_download(), sim.make_download()};
-      const HostBytes empty_field{HostAllocator<std::uint8_t>(&sim.host_memory())};
-      FrameJob in_transit;
-      Download* carrying = nullptr;  // in_transit's download, while it has one
-      const auto hand_over = [&] {
-        if (!carrying) return;
-        carrying->finish();
-        carrying = nullptr;
-        output.push(std::move(in_transit));
-      };
-      try {
-        for (long k = 0; k < frames && !interrupted; ++k) {
-          const Clock::time_point step_start = Clock::now();
-          sim.step();
-          FrameJob job = output.spare();
-          job.fields.resize(specs.size(), empty_field);
-          Download& download = *downloads[k % 2];
-          for (std::size_t f = 0; f < specs.size(); ++f) {
-            const FieldView field = sim.field(specs[f].name);
-            job.fields[f].resize(field.field->bytes());
-            download.add(job.fields[f].data(), field.data, field.field->bytes());
-          }
-          job.frame = k;
-          job.time_s = sim.time_s();
-          job.ticks = sim.haptic_ticks();
-          hand_over();  // the frame before, whose copies ran while this one computed
-          in_transit = std::move(job);
-          carrying = &download;
-          frame_seconds.push_back(seconds_since(step_start));
-          simulate_s += frame_seconds.back();
-          tick_seconds.insert(tick_seconds.end(), sim.haptic_tick_seconds().begin(), sim.haptic_tick_seconds().end());
-          progress.update(k + 1);
-        }
-        // Every frame made is written, an interrupted run's too.
-        hand_over();
-        output.drain();
-      } catch (...) {
-        // What was made before the failure is written (or fails too) before the count is taken.
-        try {
-          hand_over();
-        } catch (...) {
-        }
-        try {
-          output.drain();
-        } catch (...) {
-        }
-        written = output.written();
-        throw;
-      }
-      written = output.written();
-    }
-    pngs = frame_output.pngs();
-    progress.clear();
-    if (writer) writer->finish(written == frames);
-    // An interrupted run's sheet shows the frames it reached; the cells after stay dark.
-    if (sheet) sheet->write(files.partial("contact_sheet.png").string());
-    if (view_sheet) view_sheet->write(files.partial("view_contact_sheet.png").string());
-  } catch (const std::exception& e) {
-    progress.clear();
-    throw write_failure(e, written, files);
-  }
+  const RunTally tally = write_run(options, scenario, sim, files, sheets, progress);
   // The run is whole (finished, or interrupted in order): it replaces the folder's last one.
   files.publish();
-  const long done = sim.frames_done();
   const double wall_s = seconds_since(start);
-
-  std::string wrote = options.hdf5 ? files.published("frames.h5").string() : std::string("no HDF5");
-  if (pngs > 0) wrote += " and " + std::to_string(pngs) + " PNGs in " + files.published("png").string();
-  if (sheet) wrote += " and " + files.published("contact_sheet.png").string();
-  if (view_sheet) wrote += " and " + files.published("view_contact_sheet.png").string();
+  const std::string wrote = files_written(options, files, tally, sheets);
   if (interrupted) {
-    std::fprintf(stderr, "bleedsim: interrupted after %ld of %ld frames; kept %s\n", done, frames,
+    std::fprintf(stderr, "bleedsim: interrupted after %ld of %ld frames; kept %s\n", long(sim.frames_done()), frames,
                  wrote.c_str());
     return kExitInterrupted;
   }
-  if (options.quiet) return 0;
-  std::printf("bleedsim: %ld frames in %.2f s (%.2f ms/frame, simulation %.2f ms/frame) on %s (%s); wrote %s\n",
-              done, wall_s, 1000.0 * wall_s / double(done), 1000.0 * simulate_s / double(done),
-              to_string(sim.backend().kind()), sim.backend().device_name().c_str(), wrote.c_str());
-  std::printf("bleedsim: frame compute %s\n",
-              describe_against_budget(percentiles_of(frame_seconds), "frames", 1.0 / s.frame_rate_hz).c_str());
-  if (s.trace)
-    std::printf("bleedsim: haptic tick compute %s; %zu cuts made\n",
-                describe_against_budget(percentiles_of(tick_seconds), "ticks", kHapticBudget_s).c_str(),
-                sim.cuts().size() - s.cuts.size());
+  if (!options.quiet) print_summary(sim, tally, wall_s, wrote);
   return 0;
 }
 
