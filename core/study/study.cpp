@@ -58,120 +58,193 @@ void append(std::vector<T>& to, const std::vector<T>& more) {
   to.insert(to.end(), more.begin(), more.end());
 }
 
+void check_seeds(int seeds) {
+  if (seeds < 2)
+    throw InputError({}, "--seeds", "needs at least 2 (got " + std::to_string(seeds) +
+                                        "): a confidence interval needs two runs");
+}
+
+void set_duration(Scene& scene, double duration_s) {
+  scene.duration_s = duration_s;
+  if (scene.frame_count() < 1)
+    throw InputError({}, "--duration-s",
+                     format_number(duration_s) + " s is less than one frame at " +
+                         format_number(scene.frame_rate_hz) + " Hz");
+}
+
+// Every knob the scene has, at its default levels; the time step's are chosen once the others' are
+// known (choose_substep_levels).
+std::vector<KnobLevels> default_knobs(const Scene& scene) {
+  std::vector<KnobLevels> levels;
+  for (const Knob& knob : knobs())
+    if (knob.applies(scene))
+      levels.push_back(
+          {&knob, std::string(knob.name) == "substeps" ? std::vector<double>{} : knob.default_ladder(scene)});
+  return levels;
+}
+
+// The knobs named (none: default_knobs), in the table's order (their addresses in it), each with its
+// levels coarse to fine.
+std::vector<StudyLadder> knob_ladders(const Scene& scene, std::vector<KnobLevels> knobs) {
+  const bool defaults = knobs.empty();
+  if (defaults) knobs = default_knobs(scene);
+  std::stable_sort(knobs.begin(), knobs.end(),
+                   [](const KnobLevels& a, const KnobLevels& b) { return a.knob < b.knob; });
+  std::vector<StudyLadder> ladders;
+  for (std::size_t i = 0; i < knobs.size(); ++i) {
+    const KnobLevels& k = knobs[i];
+    const std::string key = std::string("--knob ") + k.knob->name;
+    if (i > 0 && knobs[i - 1].knob == k.knob) throw InputError({}, key, "is given twice: give its levels once");
+    if (!k.knob->applies(scene))
+      throw InputError({}, key, "this scene has nothing it changes (" + std::string(k.knob->trades) + ")");
+    if (!k.levels.empty() || !defaults) check_values(*k.knob, k.levels);
+    ladders.push_back({k.knob, coarse_to_fine(*k.knob, k.levels), {}, false, ""});
+  }
+  return ladders;
+}
+
+// `scene` with every knob of `ladders` at its finest but `knob` at `value` (none: all).
+Scene at_reference_but(Scene scene, const std::vector<StudyLadder>& ladders, const Knob* knob, double value) {
+  for (const StudyLadder& ladder : ladders) {
+    if (ladder.values.empty()) continue;  // a default not yet chosen: the scene's own
+    ladder.knob->apply(scene, ladder.knob == knob ? value : reference_value(ladder));
+  }
+  return scene;
+}
+
+// The fewest sub-steps that the stiffest contact of the study allows: the reference's, or a
+// refinement's along a knob that stiffens it.
+int fewest_substeps(const Scene& base, const std::vector<StudyLadder>& ladders) {
+  int fewest = fewest_stable_substeps(at_reference_but(base, ladders, nullptr, 0));
+  for (const StudyLadder& other : ladders)
+    if (!other.values.empty())
+      if (const std::optional<double> finer = refined_value(*other.knob, other.values))
+        fewest = std::max(fewest, fewest_stable_substeps(at_reference_but(base, ladders, other.knob, *finer)));
+  return fewest;
+}
+
+// The time step's default levels, where default_knobs left them: the fewest sub-steps the study
+// allows, and twice that.
+void choose_substep_levels(const Scene& base, std::vector<StudyLadder>& ladders) {
+  for (StudyLadder& ladder : ladders) {
+    if (!ladder.values.empty()) continue;
+    Scene at_fewest = base;
+    at_fewest.particles->substeps = fewest_substeps(base, ladders);
+    ladder.values = coarse_to_fine(*ladder.knob, ladder.knob->default_ladder(at_fewest));
+  }
+}
+
+// A ladder's settings: its coarser levels, the reference (setting 0) and its refinement, where the
+// knob has one finer; or why it has none.
+void add_ladder_settings(StudyLadder& ladder, std::vector<StudySetting>& settings) {
+  const std::vector<double> levels = ladder.values;
+  for (std::size_t i = 0; i + 1 < levels.size(); ++i) {
+    ladder.settings.push_back(settings.size());
+    settings.push_back({ladder.knob->name, levels[i], "ladder"});
+  }
+  ladder.settings.push_back(0);
+  const double finest = levels.back();
+  if (finest == ladder.knob->exact) {
+    ladder.not_refined = "exact at " + format_number(finest) + ": nothing to refine";
+  } else if (const std::optional<double> finer = refined_value(*ladder.knob, levels)) {
+    ladder.values.push_back(*finer);
+    ladder.settings.push_back(settings.size());
+    ladder.refined = true;
+    settings.push_back({ladder.knob->name, *finer, "refinement"});
+  } else {
+    ladder.not_refined = "no value finer than " + format_number(finest) + " within the knob's range";
+  }
+}
+
+// The settings: the reference, the scene as it is, then each knob's coarser levels and its
+// refinement.
+std::vector<StudySetting> study_settings(std::vector<StudyLadder>& ladders) {
+  std::vector<StudySetting> settings = {{"reference", 0, "reference"}, {"scene", 0, "scene"}};
+  for (StudyLadder& ladder : ladders) add_ladder_settings(ladder, settings);
+  return settings;
+}
+
+// Every setting is compared with the reference, so a study whose reference cannot run has nothing
+// to measure.
+void check_reference_runs(const Study& study) {
+  const Scene reference = study.scene_for(0, 0);
+  if (const ParamProblem problem = scene_problem(reference))
+    throw InputError({}, "reference",
+                     "the finest settings (" + study.reference_description() + ") cannot run: " + problem.text() +
+                         "; narrow the knobs' ranges");
+}
+
+// The common grid: the coarsest panel any setting draws.
+void choose_grid(const Scene& base, const std::vector<StudyLadder>& ladders, const std::vector<StudySetting>& settings,
+                 int& grid_w, int& grid_h) {
+  const StudyLadder* resolution = nullptr;
+  for (const StudyLadder& ladder : ladders)
+    if (std::string(ladder.knob->name) == "resolution") resolution = &ladder;
+  const double finest_resolution = resolution ? reference_value(*resolution) : 1.0;
+  grid_w = base.domain.width_px;
+  grid_h = base.domain.height_px;
+  for (const StudySetting& setting : settings) {
+    const double f = setting.knob == "resolution" ? setting.value : setting.role == "scene" ? 1.0 : finest_resolution;
+    grid_w = std::min(grid_w, resolution_pixels(base.domain.width_px, f));
+    grid_h = std::min(grid_h, resolution_pixels(base.domain.height_px, f));
+  }
+  common_grid(grid_w, grid_h);
+}
+
+// Each setting's job cost (Study::job_cost).
+std::vector<double> setting_costs(const Study& study) {
+  std::vector<double> costs;
+  for (std::size_t i = 0; i < study.settings().size(); ++i) {
+    const Scene s = study.scene_for(i, 0);
+    double per_frame = double(s.domain.width_px) * s.domain.height_px;
+    if (s.particles)
+      per_frame += double(particle_mechanics(*s.particles, s.domain, s.frame_rate_hz).substeps) * s.particles->capacity;
+    costs.push_back(per_frame * study.frames_per_run());
+  }
+  return costs;
+}
+
+// Up to kSnapshots of a run's frames, spaced evenly, the last among them.
+std::vector<int> snapshots_of(int frames) {
+  const int snapshots = std::min(kSnapshots, frames);
+  std::vector<int> chosen;
+  for (int i = 0; i < snapshots; ++i) chosen.push_back(int((long(i) + 1) * frames / snapshots) - 1);
+  return chosen;
+}
+
+// Study::key(): what the study runs, hashed, so that a record another study made is refused.
+std::uint64_t study_key(const Study& study) {
+  const Scene& base = study.scene();
+  std::string identity = base.name + "|" + format_number(base.duration_s) + "|" + format_number(base.frame_rate_hz) +
+                         "|" + std::to_string(base.domain.width_px) + "x" + std::to_string(base.domain.height_px) +
+                         "|" + std::to_string(base.seed) + "|" + std::to_string(study.seeds()) + "|" +
+                         std::to_string(study.grid_width()) + "x" + std::to_string(study.grid_height());
+  for (const StudySetting& s : study.settings())
+    identity += "|" + s.knob + " " + format_significant(s.value, 17) + " " + s.role;
+  for (const BackendKind b : study.backends()) identity += std::string("|") + to_string(b);
+  for (const Cut& c : base.cuts)
+    for (const double v : {c.x_mm, c.y_mm, c.start_s, c.flow_mm3_per_s_per_mm, c.bleed_s})
+      identity += " " + format_significant(v, 17);
+  return fnv1a64(base.tissue.rgba.data(), base.tissue.rgba.size(), fnv1a64(identity.data(), identity.size()));
+}
+
 }  // namespace
 
 double reference_value(const StudyLadder& ladder) { return ladder.values[ladder.values.size() - 1 - ladder.refined]; }
 
 Study::Study(const Scene& scene, const StudySpec& spec) : base_(scene), spec_(spec) {
-  if (spec_.seeds < 2)
-    throw InputError({}, "--seeds", "needs at least 2 (got " + std::to_string(spec_.seeds) +
-                                        "): a confidence interval needs two runs");
+  check_seeds(spec_.seeds);
   if (spec_.backends.empty()) spec_.backends = {BackendKind::cpu};
-  if (spec_.duration_s) {
-    base_.duration_s = *spec_.duration_s;
-    if (base_.frame_count() < 1)
-      throw InputError({}, "--duration-s",
-                       format_number(*spec_.duration_s) + " s is less than one frame at " +
-                           format_number(base_.frame_rate_hz) + " Hz");
-  }
+  if (spec_.duration_s) set_duration(base_, *spec_.duration_s);
   pin_particle_model(base_);
-
-  // The knobs, in the table's order (their addresses in it), each with its levels coarse to fine.
-  // Without knobs named: every knob the scene has, at its default levels; the time step's are
-  // chosen once the others' are known (below).
-  const bool defaults = spec_.knobs.empty();
-  if (defaults)
-    for (const Knob& knob : knobs())
-      if (knob.applies(base_)) spec_.knobs.push_back({&knob, std::string(knob.name) == "substeps"
-                                                                 ? std::vector<double>{}
-                                                                 : knob.default_ladder(base_)});
-  std::stable_sort(spec_.knobs.begin(), spec_.knobs.end(),
-                   [](const KnobLevels& a, const KnobLevels& b) { return a.knob < b.knob; });
-  for (std::size_t i = 0; i < spec_.knobs.size(); ++i) {
-    const KnobLevels& k = spec_.knobs[i];
-    const std::string key = std::string("--knob ") + k.knob->name;
-    if (i > 0 && spec_.knobs[i - 1].knob == k.knob) throw InputError({}, key, "is given twice: give its levels once");
-    if (!k.knob->applies(base_))
-      throw InputError({}, key, "this scene has nothing it changes (" + std::string(k.knob->trades) + ")");
-    if (!k.levels.empty() || !defaults) check_values(*k.knob, k.levels);
-    ladders_.push_back({k.knob, coarse_to_fine(*k.knob, k.levels), {}, false, ""});
-  }
-  // The time step's default levels: the fewest sub-steps that the stiffest contact of the study
-  // allows (the reference's, or a refinement's along a knob that stiffens it), and twice that.
-  for (StudyLadder& ladder : ladders_) {
-    if (!ladder.values.empty()) continue;
-    int fewest = fewest_stable_substeps(at_reference_but(nullptr, 0));
-    for (const StudyLadder& other : ladders_)
-      if (!other.values.empty())
-        if (const std::optional<double> finer = refined_value(*other.knob, other.values))
-          fewest = std::max(fewest, fewest_stable_substeps(at_reference_but(other.knob, *finer)));
-    Scene at_fewest = base_;
-    at_fewest.particles->substeps = fewest;
-    ladder.values = coarse_to_fine(*ladder.knob, ladder.knob->default_ladder(at_fewest));
-  }
-
-  // The settings: the reference, the scene as it is, then each knob's coarser levels and its
-  // refinement.
-  settings_.push_back({"reference", 0, "reference"});
-  settings_.push_back({"scene", 0, "scene"});
-  for (StudyLadder& ladder : ladders_) {
-    const std::vector<double> levels = ladder.values;
-    for (std::size_t i = 0; i + 1 < levels.size(); ++i) {
-      ladder.settings.push_back(settings_.size());
-      settings_.push_back({ladder.knob->name, levels[i], "ladder"});
-    }
-    ladder.settings.push_back(0);
-    const double finest = levels.back();
-    if (finest == ladder.knob->exact) {
-      ladder.not_refined = "exact at " + format_number(finest) + ": nothing to refine";
-    } else if (const std::optional<double> finer = refined_value(*ladder.knob, levels)) {
-      ladder.values.push_back(*finer);
-      ladder.settings.push_back(settings_.size());
-      ladder.refined = true;
-      settings_.push_back({ladder.knob->name, *finer, "refinement"});
-    } else {
-      ladder.not_refined = "no value finer than " + format_number(finest) + " within the knob's range";
-    }
-  }
-  const Scene reference = scene_for(0, 0);
-  if (const ParamProblem problem = scene_problem(reference))
-    throw InputError({}, "reference",
-                     "the finest settings (" + reference_description() + ") cannot run: " + problem.text() +
-                         "; narrow the knobs' ranges");
-
-  // The common grid: the coarsest panel any setting draws.
-  const StudyLadder* resolution = nullptr;
-  for (const StudyLadder& ladder : ladders_)
-    if (std::string(ladder.knob->name) == "resolution") resolution = &ladder;
-  const double finest_resolution = resolution ? reference_value(*resolution) : 1.0;
-  grid_w_ = base_.domain.width_px;
-  grid_h_ = base_.domain.height_px;
-  for (const StudySetting& setting : settings_) {
-    const double f = setting.knob == "resolution" ? setting.value : setting.role == "scene" ? 1.0 : finest_resolution;
-    grid_w_ = std::min(grid_w_, resolution_pixels(base_.domain.width_px, f));
-    grid_h_ = std::min(grid_h_, resolution_pixels(base_.domain.height_px, f));
-  }
-  common_grid(grid_w_, grid_h_);
-  for (std::size_t i = 0; i < settings_.size(); ++i) {
-    const Scene s = scene_for(i, 0);
-    double per_frame = double(s.domain.width_px) * s.domain.height_px;
-    if (s.particles)
-      per_frame += double(particle_mechanics(*s.particles, s.domain, s.frame_rate_hz).substeps) * s.particles->capacity;
-    setting_costs_.push_back(per_frame * frames_per_run());
-  }
-  const int frames = frames_per_run(), snapshots = std::min(kSnapshots, frames);
-  for (int i = 0; i < snapshots; ++i) snapshots_.push_back(int((long(i) + 1) * frames / snapshots) - 1);
-
-  std::string identity = base_.name + "|" + format_number(base_.duration_s) + "|" + format_number(base_.frame_rate_hz) +
-                         "|" + std::to_string(base_.domain.width_px) + "x" + std::to_string(base_.domain.height_px) +
-                         "|" + std::to_string(base_.seed) + "|" + std::to_string(spec_.seeds) + "|" +
-                         std::to_string(grid_w_) + "x" + std::to_string(grid_h_);
-  for (const StudySetting& s : settings_) identity += "|" + s.knob + " " + format_significant(s.value, 17) + " " + s.role;
-  for (const BackendKind b : spec_.backends) identity += std::string("|") + to_string(b);
-  for (const Cut& c : base_.cuts)
-    for (const double v : {c.x_mm, c.y_mm, c.start_s, c.flow_mm3_per_s_per_mm, c.bleed_s})
-      identity += " " + format_significant(v, 17);
-  key_ = fnv1a64(base_.tissue.rgba.data(), base_.tissue.rgba.size(), fnv1a64(identity.data(), identity.size()));
+  ladders_ = knob_ladders(base_, spec_.knobs);
+  choose_substep_levels(base_, ladders_);
+  settings_ = study_settings(ladders_);
+  check_reference_runs(*this);
+  choose_grid(base_, ladders_, settings_, grid_w_, grid_h_);
+  setting_costs_ = setting_costs(*this);
+  snapshots_ = snapshots_of(frames_per_run());
+  key_ = study_key(*this);
 }
 
 std::uint64_t Study::seed_of(int seed_index) const {
@@ -187,12 +260,7 @@ std::string Study::reference_description() const {
 }
 
 Scene Study::at_reference_but(const Knob* knob, double value) const {
-  Scene s = base_;
-  for (const StudyLadder& ladder : ladders_) {
-    if (ladder.values.empty()) continue;  // a default not yet chosen: the scene's own
-    ladder.knob->apply(s, ladder.knob == knob ? value : reference_value(ladder));
-  }
-  return s;
+  return bleedsim::at_reference_but(base_, ladders_, knob, value);
 }
 
 Scene Study::scene_for(std::size_t setting, int seed_index) const {
