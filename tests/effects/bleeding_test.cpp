@@ -11,7 +11,7 @@
 #include "core/runtime/simulation.h"
 #include "core/runtime/tissue.h"
 #include "core/runtime/vessels.h"
-#include "tests/runtime/field_values.h"
+#include "tests/effects/bleeding_scenes.h"
 
 namespace bleedsim {
 namespace {
@@ -22,23 +22,14 @@ constexpr double kPi = 3.14159265358979323846;
 // A 40 × 32 mm panel of 0.2 mm pixels whose vessel density is density(y) at each pixel's centre,
 // with particles that live a few steps (only their count is asked, so few need be alive) and cuts that bleed for bleed_s.
 Scene vessel_scene(double (*density)(double y_mm), double duration_s) {
-  Scene scene;
-  scene.name = "vessels";
-  scene.domain = Domain{200, 160, 40.0, 32.0};
-  scene.duration_s = duration_s;
-  scene.tissue = procedural_tissue(200, 160, 1);
-  scene.particles = ParticleParams{};
-  scene.particles->capacity = 4096;
-  scene.particles->lifetime_s = 0.05;
-  scene.particles->fade_s = 0.01;
-  scene.particles->design_depth_mm = 0.5;  // no pile forms: a soft contact, few sub-steps
+  Scene scene = test::bleeding_scene("vessels", Domain{200, 160, 40.0, 32.0}, duration_s, 0.05, 0.01);
   scene.vessels = VesselParams{};
   for (int j = 0; j < 160; ++j)
     for (int i = 0; i < 200; ++i) scene.vessel_density.push_back(float(density((j + 0.5) * 0.2)));
   return scene;
 }
 
-std::uint64_t emitted(const Simulation& sim) { return test::field_values<std::uint64_t>(sim, "particles/accounting")[0]; }
+std::uint64_t emitted(const Simulation& sim) { return test::particle_counts(sim).emitted; }
 
 double gradient(double y_mm) { return y_mm / 32.0; }
 
@@ -53,12 +44,9 @@ TEST(Vessels, EachCutBleedsTheMapsIntegralAlongItsWound) {
   const std::vector<Wound> wounds = {{10, 4, 4, 0}, {20, 16, 4, 90}, {30, 28, 6, 45}, {8, 12, 2, -30}, {32, 22, 8, 135}};
   Scene scene = vessel_scene(gradient, double(wounds.size()));
   for (std::size_t k = 0; k < wounds.size(); ++k) {
-    Cut cut = scene.cut_at(wounds[k].x, wounds[k].y, double(k));
+    Cut& cut = test::add_cut(scene, wounds[k].x, wounds[k].y, double(k), 10.0, 0.5);
     cut.wound_mm = wounds[k].length;
     cut.wound_angle_deg = wounds[k].angle;
-    cut.flow_mm3_per_s_per_mm = 10.0;
-    cut.bleed_s = 0.5;
-    scene.cuts.push_back(cut);
   }
   Simulation sim(scene, kCpu);
   std::uint64_t before = 0;
@@ -87,9 +75,7 @@ TEST(Vessels, AWoundWithoutVesselsDoesNotBleed) {
   EXPECT_NEAR(with_vessels(scene, across).vessel_density, 0.5, 1e-12);
   EXPECT_EQ(with_vessels(scene, scene.cut_at(20, 20, 0)).vessel_density, 1.0);
 
-  Cut cut = scene.cut_at(20, 10, 0);
-  cut.flow_mm3_per_s_per_mm = 50.0;
-  scene.cuts.push_back(cut);
+  test::add_cut(scene, 20, 10, 0, 50.0, scene.particles->bleed_s);
   Simulation sim(scene, kCpu);
   while (sim.frames_done() < scene.frame_count()) sim.step();
   EXPECT_EQ(emitted(sim), 0u);
@@ -145,22 +131,10 @@ TEST(Pulse, TheClosedFormIsTheIntegralOfTheWaveform) {
 // (of 10,000: 0.01 %). A venous cut beside it oozes: its spectrum holds no peak at the heart rate.
 TEST(Pulse, AnArterialCutBeatsAtTheHeartRateAboutItsMeanFlow) {
   for (const bool arterial : {true, false}) {
-    Scene scene;
-    scene.name = "pulse";
-    scene.domain = Domain{100, 80, 20.0, 16.0};
-    scene.duration_s = 20.0;
-    scene.tissue = procedural_tissue(100, 80, 1);
-    scene.particles = ParticleParams{};
-    scene.particles->capacity = 4096;
-    scene.particles->lifetime_s = 0.3;
-    scene.particles->fade_s = 0.1;
-    scene.particles->design_depth_mm = 0.5;
+    Scene scene = test::bleeding_scene("pulse", Domain{100, 80, 20.0, 16.0}, 20.0, 0.3, 0.1);
     scene.pulse = PulseParams{};
-    Cut cut = scene.cut_at(10, 4, 0);
-    cut.flow_mm3_per_s_per_mm = 2.0;  // 2 mm³/s over 1 mm of wound: 500 particles a second
-    cut.bleed_s = 20.0;
-    cut.arterial = arterial;
-    scene.cuts.push_back(cut);
+    // 2 mm³/s over 1 mm of wound: 500 particles a second.
+    test::add_cut(scene, 10, 4, 0, 2.0, 20.0).arterial = arterial;
     Simulation sim(scene, kCpu);
     std::vector<double> per_frame;
     std::uint64_t before = 0;

@@ -15,7 +15,7 @@
 #include "core/io/scenario.h"
 #include "core/physics/instrument.h"
 #include "core/runtime/simulation.h"
-#include "core/runtime/tissue.h"
+#include "tests/effects/bleeding_scenes.h"
 #include "tests/runtime/field_values.h"
 
 namespace bleedsim {
@@ -26,32 +26,14 @@ const BackendChoice kCpu{BackendChoice::Want::cpu, 2};
 // An 8 × 6 mm panel of 0.1 mm pixels. One wound at (x, y) bleeds `blood_mm3` over its first
 // 0.5 s; particles live 30 s (none expires here), the pile is shallow (few sub-steps).
 Scene pool_scene(double x_mm, double y_mm, double blood_mm3, double duration_s) {
-  Scene scene;
-  scene.name = "instrument";
-  scene.domain = Domain{80, 60, 8.0, 6.0};
-  scene.duration_s = duration_s;
-  scene.tissue = procedural_tissue(80, 60, 1);
-  scene.particles = ParticleParams{};
-  scene.particles->capacity = 4096;
-  scene.particles->design_depth_mm = 0.5;
-  Cut cut = scene.cut_at(x_mm, y_mm, 0.0);
-  cut.flow_mm3_per_s_per_mm = blood_mm3 / 0.5;
-  cut.bleed_s = 0.5;
-  scene.cuts.push_back(cut);
+  Scene scene = test::bleeding_scene("instrument", Domain{80, 60, 8.0, 6.0}, duration_s);
+  test::add_cut(scene, x_mm, y_mm, 0.0, blood_mm3 / 0.5, 0.5);
   return scene;
 }
 
 // A scripted tip from (x0, y0) at t0 to (x1, y1) at t1.
 void add_path(Scene& scene, double t0, double x0, double y0, double t1, double x1, double y1) {
   scene.tips = {TipPoint{t0, x0, y0}, TipPoint{t1, x1, y1}};
-}
-
-struct Counts {
-  std::uint64_t emitted, alive, expired, overwritten, aspirated;
-};
-Counts counts(const Simulation& sim) {
-  const std::vector<std::uint64_t> c = test::field_values<std::uint64_t>(sim, "particles/accounting");
-  return {c[0], c[1], c[2], c[3], c.size() > 4 ? c[4] : 0};
 }
 
 // The particles alive in the ring, counted from their ages alone.
@@ -79,10 +61,10 @@ TEST_P(SuctionAccounting, IsExactEveryFrame) {
   scene.suction = SuctionParams{0.6, 0.4, 0x2};  // 100 particles a second at most
   add_path(scene, 0.2, 4.0, 2.2, 1.8, 4.0, 2.2);
   Simulation sim(scene, BackendChoice{GetParam(), 2});
-  Counts c{};
+  ParticleCounts c{};
   while (sim.frames_done() < scene.frame_count()) {
     sim.step();
-    c = counts(sim);
+    c = test::particle_counts(sim);
     ASSERT_EQ(c.emitted, c.alive + c.expired + c.overwritten + c.aspirated) << "frame " << sim.frames_done();
     ASSERT_EQ(c.alive, alive_in_ring(sim)) << "frame " << sim.frames_done();
   }
@@ -114,7 +96,7 @@ TEST(Suction, DrainsAPoolWithinReachAtItsFlow) {
   double n0 = 0;
   while (sim.frames_done() < scene.frame_count()) {
     sim.step();
-    const Counts c = counts(sim);
+    const ParticleCounts c = test::particle_counts(sim);
     const double t = sim.time_s();
     if (t < t_on) {
       EXPECT_EQ(c.aspirated, 0u) << "t = " << t;
@@ -126,7 +108,7 @@ TEST(Suction, DrainsAPoolWithinReachAtItsFlow) {
     EXPECT_NEAR(double(c.aspirated), closed_form, 1.0 + x) << "t = " << t;
     EXPECT_EQ(c.alive, std::uint64_t(n0) - c.aspirated);
   }
-  EXPECT_EQ(counts(sim).alive, 0u);
+  EXPECT_EQ(test::particle_counts(sim).alive, 0u);
 }
 
 // A wound bleeds Q = 0.5 mm³/s for 2 s under a tip that sucks R = 1 mm³/s within 1 mm of it. Each
@@ -144,9 +126,9 @@ TEST(Suction, FasterThanTheBleedingKeepsTheFieldEmpty) {
   Simulation sim(scene, kCpu);
   while (sim.frames_done() < scene.frame_count()) {
     sim.step();
-    EXPECT_LE(counts(sim).alive, 2u) << "t = " << sim.time_s();
+    EXPECT_LE(test::particle_counts(sim).alive, 2u) << "t = " << sim.time_s();
   }
-  EXPECT_EQ(counts(sim).emitted, 250u);
+  EXPECT_EQ(test::particle_counts(sim).emitted, 250u);
 }
 
 // A tip held in the bottom-left corner, its reach 1.5 mm: it takes the blood there and nothing
@@ -159,7 +141,7 @@ TEST(Suction, ATipInACornerTakesWhatItReachesAndOneOffThePanelNothing) {
   add_path(corner, 1.0, 0.0, 6.0, 3.0, 0.0, 6.0);
   Simulation sim(corner, kCpu);
   while (sim.frames_done() < corner.frame_count()) sim.step();
-  const Counts c = counts(sim);
+  const ParticleCounts c = test::particle_counts(sim);
   EXPECT_GT(c.aspirated, 0u);
   EXPECT_GT(c.alive, 0u);
   const std::vector<float> position = test::field_values<float>(sim, "particles/position");
@@ -178,7 +160,7 @@ TEST(Suction, ATipInACornerTakesWhatItReachesAndOneOffThePanelNothing) {
     a.step();
     b.step();
   }
-  EXPECT_EQ(counts(a).aspirated, 0u);
+  EXPECT_EQ(test::particle_counts(a).aspirated, 0u);
   EXPECT_EQ(a.copy_field("particles/position"), b.copy_field("particles/position"));
   EXPECT_EQ(a.copy_field("splat/thickness"), b.copy_field("splat/thickness"));
 }
@@ -287,7 +269,7 @@ TEST(Contact, ItsWakeThroughAPoolClosesAgain) {
       const double t = sim.time_s(), wet = covered(sim, 15, 25, 41, 49);
       if (t > 2.3 && t < 2.5) {
         EXPECT_EQ(wet, 1.0) << "seed " << seed << ", t = " << t << ": the box is in the pool";
-        alive_before = counts(sim).alive;
+        alive_before = test::particle_counts(sim).alive;
       }
       if (t > 2.65 && t < 2.8) least_while_over = std::min(least_while_over, wet);
       if (t > 3.37) {
@@ -295,7 +277,7 @@ TEST(Contact, ItsWakeThroughAPoolClosesAgain) {
       }
     }
     EXPECT_LT(least_while_over, 0.5) << "seed " << seed << ": the tip parts the pool where it is";
-    EXPECT_EQ(counts(sim).alive, alive_before) << "seed " << seed;
+    EXPECT_EQ(test::particle_counts(sim).alive, alive_before) << "seed " << seed;
   }
 }
 
@@ -315,7 +297,7 @@ TEST(Suction, TheStylusSucksOnlyInContactWithItsButtonHeld) {
       on = tick.contact && (tick.buttons & 0x2) != 0;
       on_in_frame = on_in_frame || on;
     }
-    const std::uint64_t taken = counts(sim).aspirated;
+    const std::uint64_t taken = test::particle_counts(sim).aspirated;
     if (!on_in_frame) {
       EXPECT_EQ(taken, before) << "t = " << sim.time_s() << ": no tick sucked";
     }
