@@ -20,7 +20,7 @@
 #include "core/haptics/haptics.h"
 #include "core/io/trace_csv.h"
 #include "core/io/scenario.h"
-#include "core/runtime/simulation.h"
+#include "core/simulation/simulation.h"
 #include "core/runtime/timing_summary.h"
 #include "core/haptics/trace_replay.h"
 #include "core/io/trace_synth.h"

@@ -2,7 +2,7 @@
 // time in: a settled pile. Emit, bin (cell keys, stable sort, cell ranges, sorted copies), collide,
 // integrate and the whole step as a scene runs it (emit + bin + collide + integrate; on CUDA fused
 // into four launches and CUB's scan); the instrument's part of a step
-// (core/effects/instrument.h) with its tip in the pile: the suction at the default flow's quota and
+// (core/effects/suction/suction_hook.h) with its tip in the pile: the suction at the default flow's quota and
 // at the whole reach, the contact of a tip moving through it, and the step with both; on CUDA at
 // 65,536, 1,048,576 and 4,194,304 particles and on the CPU reference at 65,536; and the grid step
 // against an all-pairs baseline (bench/all_pairs.h) at 65,536 on CUDA and 8,192 on the CPU.
@@ -39,11 +39,11 @@
 #include "bench/all_pairs.h"
 #include "bench/bench_util.h"
 #include "core/runtime/backend.h"
-#include "core/effects/instrument.h"
-#include "core/effects/particle_buffers.h"
-#include "core/effects/particle_model.h"
+#include "core/effects/suction/suction_hook.h"
+#include "core/effects/particles/particle_buffers.h"
+#include "core/effects/particles/particle_model.h"
 #include "core/physics/particles.h"
-#include "core/runtime/scene.h"
+#include "core/scene/scene.h"
 
 namespace bleedsim {
 namespace {
@@ -219,7 +219,7 @@ struct Pile {
   void bin() { backend->run("particles", ParticlePhase::bin, args); }
   void collide() { backend->run("particles", ParticlePhase::collide, args); }
   void integrate() { backend->run("particles", ParticlePhase::integrate, args); }
-  // The whole step, as a scene's sub-step runs it (core/effects/particle_stage.cpp): on CUDA its
+  // The whole step, as a scene's sub-step runs it (core/effects/particles/particle_stage.cpp): on CUDA its
   // phases fused into four launches and CUB's scan, the same bytes as the four phases one by one.
   void step() {
     ParticleStep planned{};  // the ring is full: the live range is the same before emission and after

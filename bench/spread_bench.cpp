@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "bench/bench_util.h"
-#include "core/runtime/simulation.h"
+#include "core/simulation/simulation.h"
 #include "core/runtime/tissue.h"
 
 namespace bleedsim {

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "bench/bench_util.h"
-#include "core/effects/blend_stage.h"
-#include "core/effects/spread_tiles.h"
+#include "core/effects/blend/blend_stage.h"
+#include "core/effects/spread/spread_tiles.h"
 #include "core/physics/pixel_kernels.h"
 #include "core/runtime/backend.h"
 #include "core/runtime/tissue.h"

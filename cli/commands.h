@@ -8,7 +8,7 @@
 
 #include "core/io/scenario.h"
 #include "core/runtime/backend.h"
-#include "core/runtime/simulation.h"
+#include "core/simulation/simulation.h"
 #include "core/io/trace_synth.h"
 #include "core/scaleout/ranks.h"
 #include "core/study/study.h"

@@ -4,7 +4,7 @@
 #include <string>
 
 #include "cli/commands.h"
-#include "core/runtime/frame_hash.h"
+#include "core/simulation/frame_hash.h"
 #include "core/runtime/hash.h"
 #include "core/io/scenario.h"
 

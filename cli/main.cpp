@@ -1,4 +1,4 @@
-// bleedsim: a thin command line over the library (core/runtime/simulation.h).
+// bleedsim: a thin command line over the library (core/simulation/simulation.h).
 #include <CLI/CLI.hpp>
 
 #include <cerrno>

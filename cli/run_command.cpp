@@ -24,7 +24,7 @@
 #include "core/io/hdf5_writer.h"
 #include "core/mesh/view_render.h"
 #include "core/io/scenario.h"
-#include "core/runtime/simulation.h"
+#include "core/simulation/simulation.h"
 #include "core/runtime/timing_summary.h"
 
 namespace bleedsim::cli {

@@ -9,12 +9,12 @@
 #include "core/runtime/memory.h"
 #include "core/haptics/haptics.h"
 #include "core/effects/pipeline.h"
-#include "core/effects/particle_model.h"
-#include "core/effects/surface_stage.h"
+#include "core/effects/particles/particle_model.h"
+#include "core/effects/surface/surface_stage.h"
 #include "core/io/scenario.h"
 #include "core/haptics/trace_replay.h"
 #include "core/runtime/message_text.h"
-#include "core/runtime/vessels.h"
+#include "core/bleeding/vessel_density.h"
 
 namespace bleedsim::cli {
 namespace {

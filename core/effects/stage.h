@@ -8,8 +8,8 @@
 
 #include "core/effects/stage_kinds.h"
 #include "core/runtime/backend.h"
-#include "core/runtime/scene.h"
-#include "core/runtime/state.h"
+#include "core/scene/scene.h"
+#include "core/scene/state.h"
 
 namespace bleedsim {
 

@@ -1,12 +1,12 @@
 #include "core/effects/stage_kinds.h"
 
-#include "core/effects/blend_stage.h"
-#include "core/effects/blur_stage.h"
-#include "core/effects/particle_stage.h"
-#include "core/effects/splat_stage.h"
-#include "core/effects/spread_stage.h"
-#include "core/effects/surface_stage.h"
-#include "core/effects/trail_stage.h"
+#include "core/effects/blend/blend_stage.h"
+#include "core/effects/blur/blur_stage.h"
+#include "core/effects/particles/particle_stage.h"
+#include "core/effects/particles/splat_stage.h"
+#include "core/effects/spread/spread_stage.h"
+#include "core/effects/surface/surface_stage.h"
+#include "core/effects/trail/trail_stage.h"
 
 namespace bleedsim {
 namespace {

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "core/runtime/backend.h"
-#include "core/runtime/scene.h"
-#include "core/runtime/state.h"
+#include "core/scene/scene.h"
+#include "core/scene/state.h"
 
 namespace bleedsim {
 

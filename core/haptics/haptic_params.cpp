@@ -2,9 +2,9 @@
 
 #include <cmath>
 
-#include "core/haptics/trace.h"
+#include "core/scene/trace.h"
 #include "core/runtime/message_text.h"
-#include "core/runtime/scene.h"
+#include "core/scene/scene.h"
 
 namespace bleedsim {
 namespace {

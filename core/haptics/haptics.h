@@ -16,7 +16,7 @@
 
 #include "core/haptics/mesh_contact.h"
 
-#include "core/runtime/scene.h"
+#include "core/scene/scene.h"
 
 namespace bleedsim {
 

@@ -3,7 +3,7 @@
 #include <cstdint>
 
 #include "core/haptics/haptics.h"
-#include "core/haptics/trace.h"
+#include "core/scene/trace.h"
 
 namespace bleedsim {
 

@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "core/haptics/haptics.h"
-#include "core/runtime/state.h"
+#include "core/scene/state.h"
 
 namespace bleedsim {
 

@@ -11,7 +11,7 @@
 #include "core/mesh/view_render.h"
 #include "core/runtime/input_error.h"
 #include "core/runtime/params.h"
-#include "core/runtime/scene.h"
+#include "core/scene/scene.h"
 
 namespace bleedsim {
 

@@ -7,7 +7,7 @@
 #include <optional>
 #include <string>
 
-#include "core/haptics/trace.h"
+#include "core/scene/trace.h"
 #include "core/runtime/input_error.h"
 #include "core/runtime/memory.h"
 

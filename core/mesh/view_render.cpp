@@ -8,7 +8,7 @@
 
 #include <Eigen/Geometry>
 
-#include "core/effects/blend_stage.h"
+#include "core/effects/blend/blend_stage.h"
 #include "core/physics/optics.h"
 #include "core/runtime/message_text.h"
 

@@ -29,19 +29,19 @@
 #include "core/physics/hd.h"
 #include "core/physics/pixel_grid.h"
 #include "core/physics/surface.h"
-#include "core/runtime/twin_cache.h"
+#include "core/physics/twin_cache.h"
 
 namespace bleedsim {
 
 // How long a particle lives, and over how many of its last steps it fades (made on the host by
-// particle_lifetime(), core/effects/particle_model.h). The splat needs only this of the model.
+// particle_lifetime(), core/effects/particles/particle_model.h). The splat needs only this of the model.
 struct ParticleLifetime {
   std::uint32_t steps;
   std::uint32_t fade_steps;
 };
 
 // The model's constants for one run, as the floats both backends compute with (made once on
-// the host by make_particle_model(), core/effects/particle_model.h, which derives them).
+// the host by make_particle_model(), core/effects/particles/particle_model.h, which derives them).
 struct ParticleModel {
   float radius_mm;
   float diameter_mm;

@@ -82,7 +82,7 @@ constexpr int kSpreadTilePx = 32;
 
 // A frame's tile table, in compressed rows: tile t lists cut[first[t]] … cut[first[t + 1] − 1],
 // indices into the frame's cuts in ascending order (the list's), of every cut whose stain may reach
-// a pixel of t. Built on the host with a margin far beyond float rounding (core/effects/spread_tiles.h),
+// a pixel of t. Built on the host with a margin far beyond float rounding (core/effects/spread/spread_tiles.h),
 // so a cut left out of a tile's list stains none of its pixels.
 struct SpreadTiles {
   const int* first;  // tiles + 1 offsets into cut
@@ -121,7 +121,7 @@ inline float cut_amplitude(double start_s, double growth_per_s, double t_s) {
 // The stage's work, pixel by pixel: the stain of one frame's cuts (core/physics/pixel_kernels.h runs it),
 // each pixel through its tile's list. With `settled`, the light the cuts before these (whose stains
 // no longer change) let through, from SpreadSettle: the same products in the same order as from
-// every cut, so the same bytes. Built by SpreadUpload::pixel_work (core/effects/spread_tiles.h).
+// every cut, so the same bytes. Built by SpreadUpload::pixel_work (core/effects/spread/spread_tiles.h).
 struct SpreadPixel {
   const SpreadCut* cuts;
   SpreadTiles tiles;  // over these cuts

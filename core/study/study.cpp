@@ -6,13 +6,13 @@
 #include <cstring>
 #include <stdexcept>
 
-#include "core/effects/blend_stage.h"
-#include "core/effects/particle_model.h"
+#include "core/effects/blend/blend_stage.h"
+#include "core/effects/particles/particle_model.h"
 #include "core/io/scenario.h"
 #include "core/runtime/hash.h"
 #include "core/runtime/input_error.h"
 #include "core/runtime/message_text.h"
-#include "core/runtime/simulation.h"
+#include "core/simulation/simulation.h"
 #include "core/study/job_record.h"
 #include "core/study/study_metrics.h"
 

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "core/runtime/backend.h"
-#include "core/runtime/scene.h"
+#include "core/scene/scene.h"
 #include "core/study/study_knobs.h"
 
 namespace bleedsim {

@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "core/effects/particle_model.h"
+#include "core/effects/particles/particle_model.h"
 #include "core/io/scenario.h"
 #include "core/io/tissue_png.h"
 #include "core/runtime/message_text.h"

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "core/runtime/scene.h"
+#include "core/scene/scene.h"
 
 namespace bleedsim {
 

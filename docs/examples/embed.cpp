@@ -5,7 +5,7 @@
 #include <cstring>
 #include <vector>
 
-#include "core/runtime/simulation.h"
+#include "core/simulation/simulation.h"
 #include "core/runtime/tissue.h"
 
 int main() {

@@ -13,9 +13,9 @@
 #include <string>
 #include <vector>
 
-#include "core/effects/particle_model.h"
-#include "core/runtime/simulation.h"
-#include "core/runtime/vessels.h"
+#include "core/effects/particles/particle_model.h"
+#include "core/simulation/simulation.h"
+#include "core/bleeding/vessel_density.h"
 #include "tests/effects/hard_case_check.h"
 
 namespace bleedsim {
@@ -200,7 +200,7 @@ double pulsed_blood_mm3(const PulseParams& pulse, const Cut& cut, double t_s) {
   return cut.wound_mm * cut.flow_mm3_per_s_per_mm * beat;
 }
 
-// The spurt limit's own arithmetic (core/effects/pulse_params.cpp's rule, written out).
+// The spurt limit's own arithmetic (core/effects/pulse/pulse_params.cpp's rule, written out).
 double fastest_spurt(const PulseParams& pulse, const ParticleParams& p, double speed_mm_s) {
   return (1.0 + pulse.systolic + pulse.dicrotic) * speed_mm_s + std::sqrt(2.0) * p.velocity_jitter_mm_s;
 }

@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "core/effects/particle_accounting.h"
-#include "core/runtime/scene.h"
-#include "core/runtime/simulation.h"
+#include "core/effects/particles/particle_accounting.h"
+#include "core/scene/scene.h"
+#include "core/simulation/simulation.h"
 #include "core/runtime/tissue.h"
 #include "tests/runtime/field_values.h"
 

@@ -8,9 +8,9 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/runtime/simulation.h"
+#include "core/simulation/simulation.h"
 #include "core/runtime/tissue.h"
-#include "core/runtime/vessels.h"
+#include "core/bleeding/vessel_density.h"
 #include "tests/effects/bleeding_scenes.h"
 
 namespace bleedsim {

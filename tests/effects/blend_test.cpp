@@ -9,7 +9,7 @@
 #include <cmath>
 #include <vector>
 
-#include "core/effects/blend_stage.h"
+#include "core/effects/blend/blend_stage.h"
 #include "core/runtime/image.h"
 
 namespace bleedsim {

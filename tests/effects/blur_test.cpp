@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "core/physics/pixel_kernels.h"
-#include "core/effects/blur_stage.h"
+#include "core/effects/blur/blur_stage.h"
 
 namespace bleedsim {
 namespace {

@@ -30,10 +30,10 @@
 #include <string>
 #include <vector>
 
-#include "core/effects/particle_accounting.h"
-#include "core/effects/particle_model.h"
-#include "core/runtime/simulation.h"
-#include "core/runtime/tool.h"
+#include "core/effects/particles/particle_accounting.h"
+#include "core/effects/particles/particle_model.h"
+#include "core/simulation/simulation.h"
+#include "core/scene/tool.h"
 
 namespace bleedsim::test {
 

@@ -11,10 +11,10 @@
 #include <string>
 #include <vector>
 
-#include "core/effects/particle_model.h"
+#include "core/effects/particles/particle_model.h"
 #include "core/io/scenario.h"
 #include "core/physics/instrument.h"
-#include "core/runtime/simulation.h"
+#include "core/simulation/simulation.h"
 #include "tests/effects/bleeding_scenes.h"
 #include "tests/runtime/field_values.h"
 

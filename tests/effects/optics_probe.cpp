@@ -6,7 +6,7 @@
 #include <cstring>
 #include <vector>
 
-#include "core/effects/blend_stage.h"
+#include "core/effects/blend/blend_stage.h"
 
 int main(int argc, char** argv) {
   using namespace bleedsim;

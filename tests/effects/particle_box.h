@@ -10,12 +10,12 @@
 #include <utility>
 #include <vector>
 
-#include "core/effects/particle_buffers.h"
-#include "core/effects/particle_model.h"
-#include "core/effects/surface_stage.h"
+#include "core/effects/particles/particle_buffers.h"
+#include "core/effects/particles/particle_model.h"
+#include "core/effects/surface/surface_stage.h"
 #include "core/mesh/surface_bake.h"
 #include "core/runtime/backend.h"
-#include "core/runtime/scene.h"
+#include "core/scene/scene.h"
 
 namespace bleedsim::test {
 

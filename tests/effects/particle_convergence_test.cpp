@@ -30,8 +30,8 @@
 #include <string>
 #include <vector>
 
-#include "core/effects/particle_model.h"
-#include "core/runtime/simulation.h"
+#include "core/effects/particles/particle_model.h"
+#include "core/simulation/simulation.h"
 #include "tests/runtime/field_values.h"
 #include "core/runtime/tissue.h"
 #include "core/study/study_knobs.h"

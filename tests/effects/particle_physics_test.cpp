@@ -8,7 +8,7 @@
 #include <cmath>
 #include <vector>
 
-#include "core/effects/particle_model.h"
+#include "core/effects/particles/particle_model.h"
 #include "tests/effects/particle_box.h"
 
 namespace bleedsim {

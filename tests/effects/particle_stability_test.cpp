@@ -21,9 +21,9 @@
 #include <vector>
 
 #include "core/runtime/input_error.h"
-#include "core/effects/particle_model.h"
+#include "core/effects/particles/particle_model.h"
 #include "core/io/scenario.h"
-#include "core/runtime/simulation.h"
+#include "core/simulation/simulation.h"
 #include "tests/effects/hard_case_check.h"
 #include "tests/test_paths.h"
 

@@ -12,9 +12,9 @@
 #include <vector>
 
 #include "core/runtime/backend.h"
-#include "core/effects/particle_accounting.h"
-#include "core/effects/particle_buffers.h"
-#include "core/effects/particle_model.h"
+#include "core/effects/particles/particle_accounting.h"
+#include "core/effects/particles/particle_buffers.h"
+#include "core/effects/particles/particle_model.h"
 #include "core/physics/particles.h"
 #include "tests/effects/particle_box.h"
 

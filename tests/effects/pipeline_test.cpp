@@ -5,9 +5,9 @@
 #include <map>
 #include <stdexcept>
 
-#include "core/effects/blend_stage.h"
+#include "core/effects/blend/blend_stage.h"
 #include "core/effects/pipeline.h"
-#include "core/runtime/simulation.h"
+#include "core/simulation/simulation.h"
 #include "tests/runtime/scenes_in_code.h"
 
 namespace bleedsim {

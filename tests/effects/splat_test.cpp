@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "core/physics/splat.h"
-#include "core/effects/splat_stage.h"
+#include "core/effects/particles/splat_stage.h"
 
 namespace bleedsim {
 namespace {

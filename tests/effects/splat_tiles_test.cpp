@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "core/effects/splat_stage.h"
+#include "core/effects/particles/splat_stage.h"
 #include "core/physics/splat.h"
 #include "core/runtime/backend.h"
 

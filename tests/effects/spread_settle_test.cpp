@@ -1,4 +1,4 @@
-// The spread's settled cuts (core/effects/spread_stage.cpp, SpreadSettle): cuts at the front of the
+// The spread's settled cuts (core/effects/spread/spread_stage.cpp, SpreadSettle): cuts at the front of the
 // list whose stains no longer change are folded once into the light they let through, and a frame
 // multiplies in only the live ones. The stain is a product taken cut by cut in the list's order, and
 // folding keeps that order and leaves out only factors of exactly 1 (pixels outside a cut's reach),
@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "core/physics/spread.h"
-#include "core/runtime/simulation.h"
+#include "core/simulation/simulation.h"
 #include "tests/effects/turbinate_scene.h"
 #include "tests/runtime/scenes_in_code.h"
 

@@ -1,4 +1,4 @@
-// The spread's tiles (core/physics/spread.h, core/effects/spread_tiles.h): a pixel multiplies in only
+// The spread's tiles (core/physics/spread.h, core/effects/spread/spread_tiles.h): a pixel multiplies in only
 // the cuts its tile lists. Leaving a cut out is exact only where its stain at the pixel is exactly 0
 // (light · (1 − 0) is light to the bit), and the lists must keep the cuts' order; then the stain is,
 // byte for byte, the product over every cut (spread_stain). Checked, with every pixel a cut stains
@@ -13,7 +13,7 @@
 #include <random>
 #include <vector>
 
-#include "core/effects/spread_tiles.h"
+#include "core/effects/spread/spread_tiles.h"
 #include "core/physics/spread.h"
 #include "tests/effects/turbinate_scene.h"
 #include "tests/runtime/scenes_in_code.h"

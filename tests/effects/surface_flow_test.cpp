@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "core/io/scenario.h"
-#include "core/runtime/simulation.h"
+#include "core/simulation/simulation.h"
 #include "tests/effects/particle_box.h"
 #include "tests/mesh/meshes_in_code.h"
 #include "tests/test_paths.h"

@@ -5,10 +5,10 @@
 #include <cmath>
 #include <vector>
 
-#include "core/effects/blend_stage.h"
-#include "core/effects/trail_stage.h"
+#include "core/effects/blend/blend_stage.h"
+#include "core/effects/trail/trail_stage.h"
 #include "core/physics/pixel_kernels.h"
-#include "core/runtime/simulation.h"
+#include "core/simulation/simulation.h"
 #include "core/runtime/tissue.h"
 #include "tests/runtime/field_values.h"
 

@@ -4,10 +4,10 @@
 #include <memory>
 #include <utility>
 
-#include "core/effects/surface_stage.h"
+#include "core/effects/surface/surface_stage.h"
 #include "core/io/mesh_obj.h"
 #include "core/mesh/surface_bake.h"
-#include "core/runtime/scene.h"
+#include "core/scene/scene.h"
 #include "core/runtime/tissue.h"
 #include "tests/test_paths.h"
 

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "core/runtime/state.h"
+#include "core/scene/state.h"
 
 namespace bleedsim::golden {
 

@@ -9,7 +9,7 @@
 #include <utility>
 #include <vector>
 
-#include "core/runtime/simulation.h"
+#include "core/simulation/simulation.h"
 
 namespace bleedsim::golden {
 

@@ -7,7 +7,7 @@
 #include <optional>
 #include <sstream>
 
-#include "core/runtime/frame_hash.h"
+#include "core/simulation/frame_hash.h"
 #include "core/runtime/hash.h"
 #include "core/io/scenario.h"
 #include "tests/golden/frame_diff.h"

@@ -9,10 +9,10 @@
 #include <fstream>
 #include <string>
 
-#include "core/runtime/frame_hash.h"
+#include "core/simulation/frame_hash.h"
 #include "core/runtime/input_error.h"
 #include "core/io/scenario.h"
-#include "core/runtime/simulation.h"
+#include "core/simulation/simulation.h"
 #include "core/haptics/trace_replay.h"
 
 namespace bleedsim {

@@ -14,7 +14,7 @@
 
 #include "core/io/scenario.h"
 #include "core/runtime/message_text.h"
-#include "core/runtime/simulation.h"
+#include "core/simulation/simulation.h"
 #include "tests/io/scenario_text.h"
 #include "tests/runtime/scenes_in_code.h"
 #include "tests/test_paths.h"

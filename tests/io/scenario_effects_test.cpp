@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "core/runtime/input_error.h"
-#include "core/effects/particle_model.h"
+#include "core/effects/particles/particle_model.h"
 #include "core/io/scenario.h"
 #include "tests/io/scenario_text.h"
 

@@ -5,7 +5,7 @@
 
 #include <filesystem>
 
-#include "core/runtime/frame_hash.h"
+#include "core/simulation/frame_hash.h"
 #include "core/io/scenario.h"
 #include "tests/test_paths.h"
 

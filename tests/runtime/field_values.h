@@ -3,7 +3,7 @@
 #include <cstring>
 #include <vector>
 
-#include "core/runtime/simulation.h"
+#include "core/simulation/simulation.h"
 
 namespace bleedsim::test {
 

@@ -1,6 +1,6 @@
 #pragma once
 // Scenes built in code, as a host simulator embedding bleedsim would build them.
-#include "core/runtime/scene.h"
+#include "core/scene/scene.h"
 #include "core/runtime/tissue.h"
 
 namespace bleedsim::test {

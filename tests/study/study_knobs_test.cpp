@@ -8,7 +8,7 @@
 #include <set>
 #include <string>
 
-#include "core/effects/particle_model.h"
+#include "core/effects/particles/particle_model.h"
 #include "core/study/study_knobs.h"
 #include "tests/runtime/scenes_in_code.h"
 

@@ -10,7 +10,7 @@
 #include <sstream>
 #include <string>
 
-#include "core/effects/particle_model.h"
+#include "core/effects/particles/particle_model.h"
 #include "core/runtime/input_error.h"
 #include "core/study/job_record.h"
 #include "core/study/study.h"

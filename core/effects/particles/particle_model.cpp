@@ -1,0 +1,157 @@
+#include "core/effects/particles/particle_model.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/effects/surface/surface_stage.h"
+#include "core/runtime/count.h"
+
+namespace bleedsim {
+namespace {
+
+// At least one; a panel that holds more cells than 2^64 is uncountable, and refused.
+Count cells_along(double panel_mm, double cell_mm) {
+  return std::max(Count(1), Count::ceil_of(panel_mm / cell_mm));
+}
+
+// Only ever for a scene whose lifetime check passed: at most 2e9 steps.
+std::uint32_t steps_in(double seconds, double steps_per_s) {
+  return std::max(Count(1), Count::floor_of(std::round(seconds * steps_per_s))).to<std::uint32_t>();
+}
+
+// The deepest pile there can be: the panel's extent along gravity, or every slot of the ring heaped
+// into a quarter-disc against a corner (hexagonally packed), whichever is less. Sticky blood heaps
+// where it lands rather than levelling across the floor, and a quarter-disc is the deepest mound a
+// pile leaning on two walls makes of its area.
+double deepest_pile_mm(const ParticleParams& p, const Domain& d) {
+  const double gx = std::abs(p.gravity_x_mm_s2), gy = std::abs(p.gravity_y_mm_s2), g = std::hypot(gx, gy);
+  const double along = g > 0 ? (gx * d.width_mm + gy * d.height_mm) / g : d.height_mm;
+  const double area_mm2 = double(p.capacity) * std::sqrt(3.0) / 2.0 * p.diameter_mm * p.diameter_mm;
+  return std::min(along, 2.0 * std::sqrt(area_mm2 / M_PI));
+}
+
+// The fewest sub-steps inside the limit, or kMaxSubsteps + 1 when more than kMaxSubsteps would be
+// needed: a tiny particle's limit (or a vanishing one) asks for more steps than an int holds, so
+// the count is checked before it is narrowed.
+int fewest_stable_substeps(double frame_rate_hz, double limit_s) {
+  const Count at_least = Count::floor_of(1.0 / (limit_s * frame_rate_hz));
+  if (at_least > Count(kMaxSubsteps)) return kMaxSubsteps + 1;
+  int n = std::max(1, at_least.to<int>());
+  while (1.0 / (frame_rate_hz * n) >= limit_s) ++n;  // the floor can land on the limit
+  return n;
+}
+
+// Surface mm per panel mm at least: 1 on the flat panel; on a mesh its least stretch, by which the
+// panel's cells and margins grow so that they hold the surface's range and radius.
+double least_stretch(const Scene& scene) {
+  return scene.mesh ? panel_stretch(scene.mesh->mesh(), texture_panel(scene.domain)).least : 1.0;
+}
+
+}  // namespace
+
+ParticleMechanics particle_mechanics(const ParticleParams& p, const Domain& domain, double frame_rate_hz) {
+  ParticleMechanics m{};
+  const double d = p.diameter_mm, v = p.particle_volume_mm3;
+  m.range_mm = d * (1.0 + p.cohesion_range);
+  m.cell_mm = p.cell_mm > 0.0 ? p.cell_mm : m.range_mm;
+  m.film_mm = v / (std::sqrt(3.0) / 2.0 * d * d);
+  m.depth_mm = p.design_depth_mm > 0.0 ? p.design_depth_mm : deepest_pile_mm(p, domain);
+  m.cohesion_mm_s2 = p.cohesion_mm3_s2 * d / v;
+  m.pinning_mm_s2 = p.pinning_mm3_s2 * d / v;
+  m.yield_mm_s2 = p.yield_mm2_s2 / m.film_mm;
+  const double g = std::hypot(p.gravity_x_mm_s2, p.gravity_y_mm_s2);
+  m.stiffness_per_s2 = (g * m.depth_mm + m.cohesion_mm_s2 * d) / (p.compression * d * d);
+  m.damping_per_s = p.damping_ratio * std::sqrt(2.0 * m.stiffness_per_s2);
+  m.step_limit_s = stable_time_step_s(m.stiffness_per_s2, m.damping_per_s, p.drag_per_s, kDesignContacts);
+  m.substeps = p.substeps > 0 ? p.substeps : fewest_stable_substeps(frame_rate_hz, m.step_limit_s);
+  m.dt_s = 1.0 / (frame_rate_hz * m.substeps);
+  return m;
+}
+
+DropLimit critical_drop(const ParticleParams& p, const Domain& domain, double frame_rate_hz) {
+  const ParticleMechanics m = particle_mechanics(p, domain, frame_rate_hz);
+  const double pull = std::hypot(p.gravity_x_mm_s2, p.gravity_y_mm_s2) - m.yield_mm_s2;
+  if (pull <= 0) return {true, 0, 0};
+  const double radius = 2.0 * p.pinning_mm3_s2 / (m.film_mm * pull);
+  return {false, radius, m.film_mm * M_PI * radius * radius};
+}
+
+double stable_time_step_s(double k, double c, double drag, int contacts) {
+  // The positive root of z·k·dt² + (2z·c − 2γ)·dt − 4 = 0. Below it (2z·c − 2γ)·dt < 4, which is
+  // the second condition, z·c·dt < 2 + γ·dt: the first implies it.
+  const double z = contacts;
+  const double a = z * k, b = 2.0 * z * c - 2.0 * drag;
+  return (-b + std::sqrt(b * b + 16.0 * a)) / (2.0 * a);
+}
+
+double particle_lifetime_steps(const ParticleParams& p, double frame_rate_hz, int substeps) {
+  return p.lifetime_s * frame_rate_hz * double(substeps);
+}
+
+Count particle_grid_cells(double cell_mm, double width_mm, double height_mm) {
+  return cells_along(width_mm, cell_mm) * cells_along(height_mm, cell_mm);
+}
+
+double particle_steps_per_s(const Scene& scene) {
+  return scene.frame_rate_hz * double(particle_mechanics(*scene.particles, scene.domain, scene.frame_rate_hz).substeps);
+}
+
+ParticleLifetime particle_lifetime(const Scene& scene) {
+  const ParticleParams& p = *scene.particles;
+  const double steps_per_s = particle_steps_per_s(scene);
+  const std::uint32_t steps = steps_in(p.lifetime_s, steps_per_s);
+  return {steps, std::min(steps, steps_in(p.fade_s, steps_per_s))};
+}
+
+Count particle_cell_count(const Scene& scene) {
+  const double cell = particle_mechanics(*scene.particles, scene.domain, scene.frame_rate_hz).cell_mm / least_stretch(scene);
+  return particle_grid_cells(cell, scene.domain.width_mm, scene.domain.height_mm);
+}
+
+ParticleModel make_particle_model(const Scene& scene) {
+  const ParticleParams& p = *scene.particles;
+  const ParticleMechanics mech = particle_mechanics(p, scene.domain, scene.frame_rate_hz);
+  const double dt = mech.dt_s;
+  const double r = p.diameter_mm / 2.0, stretch = least_stretch(scene);
+  const double margin = std::min(r / stretch, std::min(scene.domain.width_mm, scene.domain.height_mm) / 2.0);
+  ParticleModel m{};
+  m.radius_mm = float(r);
+  m.diameter_mm = float(p.diameter_mm);
+  m.diameter_sq = m.diameter_mm * m.diameter_mm;
+  m.range_mm = float(mech.range_mm);
+  m.range_sq = m.range_mm * m.range_mm;
+  m.band_inverse = mech.range_mm > p.diameter_mm ? float(1.0 / (mech.range_mm - p.diameter_mm)) : 0.0f;
+  m.stiffness = float(mech.stiffness_per_s2);
+  m.damping = float(mech.damping_per_s);
+  m.cohesion = float(mech.cohesion_mm_s2);
+  m.pinning = float(mech.pinning_mm_s2);
+  m.yield = float(mech.yield_mm_s2);
+  m.edge_openness = kEdgeOpenness;
+  m.edge_company = kEdgeCompany;
+  m.birth_steps = float(steps_in(p.birth_s, 1.0 / dt));
+  // New particles part at the speed a lone particle falls at: no faster than blood runs.
+  m.birth_speed = float(std::hypot(p.gravity_x_mm_s2, p.gravity_y_mm_s2) / std::max(p.drag_per_s, 1.0));
+  m.gravity_x = float(p.gravity_x_mm_s2);
+  m.gravity_y = float(p.gravity_y_mm_s2);
+  m.dt_s = float(dt);
+  m.drag_divisor = float(1.0 + p.drag_per_s * dt);
+  m.max_speed = float(p.max_speed_mm_s);
+  m.max_speed_sq = m.max_speed * m.max_speed;
+  m.min_x = float(margin);
+  m.max_x = float(scene.domain.width_mm - margin);
+  m.min_y = float(margin);
+  m.max_y = float(scene.domain.height_mm - margin);
+  const double cell_mm = mech.cell_mm / stretch;
+  m.cell_mm = float(cell_mm);
+  m.cells_x = cells_along(scene.domain.width_mm, cell_mm).to<int>();
+  m.cells_y = cells_along(scene.domain.height_mm, cell_mm).to<int>();
+  m.lifetime = particle_lifetime(scene);
+  m.jitter_mm = float(p.jitter_mm);
+  m.velocity_x = float(p.velocity_x_mm_s);
+  m.velocity_y = float(p.velocity_y_mm_s);
+  m.velocity_jitter = float(p.velocity_jitter_mm_s);
+  m.seed = scene.seed;
+  return m;
+}
+
+}  // namespace bleedsim
