@@ -32,18 +32,24 @@
 #include <vector>
 
 #include "bench/bench_util.h"
-#include "core/physics/pixel_kernels.h"
-#include "core/runtime/backend.h"
 #include "core/effects/blend/blend_stage.h"
+#include "core/effects/blend/optics_params.h"
+#include "core/effects/blur/blur_params.h"
 #include "core/effects/blur/blur_stage.h"
-#include "core/effects/suction/suction_hook.h"
-#include "core/effects/trail/trail_stage.h"
 #include "core/effects/particles/particle_model.h"
-#include "core/scene/scene.h"
+#include "core/effects/particles/particle_params.h"
 #include "core/effects/particles/splat_stage.h"
 #include "core/effects/spread/spread_tiles.h"
+#include "core/effects/suction/suction_hook.h"
+#include "core/effects/suction/suction_params.h"
+#include "core/effects/trail/trail_params.h"
+#include "core/effects/trail/trail_stage.h"
 #include "core/haptics/haptic_params.h"
+#include "core/physics/optics_tables.h"
+#include "core/physics/pixel_kernels.h"
+#include "core/runtime/backend.h"
 #include "core/runtime/tissue.h"
+#include "core/scene/scene.h"
 
 namespace bleedsim {
 namespace {
@@ -91,18 +97,18 @@ Scene frame_scene(const Size& size, int n) {
   Scene scene;
   scene.name = "settled pile, one frame (bench/frame_bench.cpp)";
   scene.seed = 1;
-  scene.particles = ParticleParams{};
-  scene.particles->capacity = n;
-  scene.blur = BlurParams{};
+  scene.effects.set(ParticleParams{});
+  scene.effects.get<ParticleParams>().capacity = n;
+  scene.effects.set(BlurParams{});
   const double scale = std::sqrt(double(n) / kReferenceParticles);
   scene.domain.width_px = size.width;
   scene.domain.height_px = size.height;
   scene.domain.width_mm = kPanelWidthMm * scale;
   scene.domain.height_mm = kPanelHeightMm * scale;
   // Every particle alive and unfaded: a day (the most a scene may ask), or 1e9 steps.
-  const ParticleParams& p = *scene.particles;
-  const double steps_per_s = scene.frame_rate_hz * particle_mechanics(p, scene.domain, scene.frame_rate_hz).substeps;
-  scene.particles->lifetime_s = std::min(86400.0, 1.0e9 / steps_per_s);
+  const ParticleParams& p = scene.effects.get<ParticleParams>();
+  const double steps_per_s = resolve_particles(p, scene).steps_per_s;
+  scene.effects.get<ParticleParams>().lifetime_s = std::min(86400.0, 1.0e9 / steps_per_s);
   return scene;
 }
 
@@ -131,14 +137,14 @@ struct FrameScene {
 
   FrameScene(std::unique_ptr<Backend> b, const Size& s, int count)
       : backend(std::move(b)), size(s), n(count), scene(frame_scene(s, count)) {
-    problem = check_params(particle_table(), *scene.particles, scene).message;
+    problem = check_params(particle_table(), scene.effects.get<ParticleParams>(), scene).message;
     if (!problem.empty()) return;
     const PixelGrid grid = scene.domain.grid();
     const std::size_t pixels = std::size_t(grid.width) * grid.height;
 
     // The pile: slot s in row s / columns (row 0 at the bottom), spacing one diameter, age 0.
     // Even rows start one radius from the left edge, odd rows one diameter.
-    const double d = scene.particles->diameter_mm, r = d / 2.0, row_mm = std::sqrt(3.0) / 2.0 * d;
+    const double d = scene.effects.get<ParticleParams>().diameter_mm, r = d / 2.0, row_mm = std::sqrt(3.0) / 2.0 * d;
     columns = int(std::floor(scene.domain.width_mm / d - 0.5 + 1e-9));
     rows = (n + columns - 1) / columns;
     pile_height_mm = (rows - 1) * row_mm + d;
@@ -157,8 +163,8 @@ struct FrameScene {
     // The splat, as SplatStage sets it up.
     units = backend->allocate(pixels * sizeof(std::uint64_t));
     film = backend->allocate(pixels * sizeof(float));
-    splat_args.lifetime = particle_lifetime(scene);
-    splat_args.splat = make_splat_model(*scene.particles, scene.domain);
+    splat_args.lifetime = resolve_particles(scene).lifetime;
+    splat_args.splat = make_splat_model(scene.effects.get<ParticleParams>(), scene.domain);
     splat_args.capacity = n;
     splat_args.grid = grid;
     splat_args.units = units.as<std::uint64_t>();
@@ -179,7 +185,7 @@ struct FrameScene {
     splat_args.age = age.as<const std::uint32_t>();
 
     // The blur, as BlurStage sets it up.
-    const BlurParams& bp = *scene.blur;
+    const BlurParams& bp = scene.effects.get<BlurParams>();
     const std::vector<float> taps = gaussian_weights(bp.radius_px, bp.sigma_px);
     weights = backend->allocate(taps.size() * sizeof(float));
     backend->upload(weights.data(), taps.data(), weights.bytes());
@@ -227,32 +233,32 @@ struct FrameScene {
     blend_work = bleedsim::blend_work(scene, tables.as<const float>(), tissue.as<const std::uint8_t>(), stain.as<const float>(),
                        blurred.as<const float>(), nullptr, frame_rgba.as<std::uint8_t>());
     Scene lit = scene;
-    lit.optics = OpticsParams{};
-    lit.trail = TrailParams{};
+    lit.effects.set(OpticsParams{});
+    lit.effects.set(TrailParams{});
     fixed_light = backend->allocate(fixed_light_bytes(lit));
     make_fixed_light(lit, *backend, "blend", fixed_light.as<float>());
     lit_blend_work = bleedsim::blend_work(lit, tables.as<const float>(), tissue.as<const std::uint8_t>(), stain.as<const float>(),
                            blurred.as<const float>(), residue.as<const float>(), frame_rgba.as<std::uint8_t>(),
                            fixed_light.as<const float>());
-    trail_work = {film.as<const float>(), residue.as<float>(), float(lit.trail->residue),
-                  trail_decay_per_frame(*lit.trail, lit.frame_rate_hz), grid};
+    trail_work = {film.as<const float>(), residue.as<float>(), float(lit.effects.get<TrailParams>().residue),
+                  trail_decay_per_frame(lit.effects.get<TrailParams>(), lit.frame_rate_hz), grid};
 
     // The suction's sweep, for the trail's swept cases: the stylus's samples over the first frame,
     // one a haptic tick, its tip moving sideways through the middle of the pile with the suction
     // on; suction_sweep() makes of them the segments the trail stage dries (34 at 30 Hz).
     Scene sucking = lit;
-    sucking.suction = SuctionParams{};
+    sucking.effects.set(SuctionParams{});
     State stylus;
     const double frame_s = 1.0 / scene.frame_rate_hz;
     for (int tick = 0; tick <= int(std::ceil(frame_s / kHapticPeriod_s)); ++tick) {
       const double t_s = tick * kHapticPeriod_s;
       stylus.stylus.push_back({t_s, scene.domain.width_mm / 2.0 + kSweepSpeed * t_s,
-                               scene.domain.height_mm - pile_height_mm / 2.0, true, true});
+                               scene.domain.height_mm - pile_height_mm / 2.0, true, kEveryButton});
     }
     segments = suction_sweep(sucking, stylus, 0.0, frame_s);
     sweep = backend->allocate(segments.size() * sizeof(float));
     backend->upload(sweep.data(), segments.data(), sweep.bytes());
-    reach_mm = sucking.suction->radius_mm;
+    reach_mm = sucking.effects.get<SuctionParams>().radius_mm;
 
     // One frame, to see that the film is there.
     frame();

@@ -17,13 +17,14 @@
 #include <vector>
 
 #include "bench/bench_util.h"
+#include "core/effects/spread/spread_params.h"
 #include "core/haptics/haptics.h"
-#include "core/io/trace_csv.h"
-#include "core/io/scenario.h"
-#include "core/simulation/simulation.h"
-#include "core/runtime/timing_summary.h"
 #include "core/haptics/trace_replay.h"
+#include "core/io/scenario.h"
+#include "core/io/trace_csv.h"
 #include "core/io/trace_synth.h"
+#include "core/runtime/timing_summary.h"
+#include "core/simulation/simulation.h"
 
 namespace bleedsim {
 namespace {
@@ -39,7 +40,7 @@ void time_tick(benchmark::State& state) {
   const std::int64_t ticks = std::int64_t(trace.samples.size());
   Scene scene;  // the loop needs the panel and the contact: a 32 × 24 mm panel, default stylus
   scene.domain = Domain{640, 480, 32.0, 24.0};
-  scene.spread = SpreadParams{};
+  scene.effects.set(SpreadParams{});
   HapticParams stylus;
   stylus.origin_x_mm = 16.0;
   stylus.origin_y_mm = 12.0;

@@ -2,10 +2,10 @@
 // time in: a settled pile. Emit, bin (cell keys, stable sort, cell ranges, sorted copies), collide,
 // integrate and the whole step as a scene runs it (emit + bin + collide + integrate; on CUDA fused
 // into four launches and CUB's scan); the instrument's part of a step
-// (core/effects/suction/suction_hook.h) with its tip in the pile: the suction at the default flow's quota and
-// at the whole reach, the contact of a tip moving through it, and the step with both; on CUDA at
-// 65,536, 1,048,576 and 4,194,304 particles and on the CPU reference at 65,536; and the grid step
-// against an all-pairs baseline (bench/all_pairs.h) at 65,536 on CUDA and 8,192 on the CPU.
+// (core/effects/suction/suction_hook.h, core/effects/contact/contact_hook.h) with its tip in the pile: the suction at
+// the default flow's quota and at the whole reach, the contact of a tip moving through it, and the step with both; on
+// CUDA at 65,536, 1,048,576 and 4,194,304 particles and on the CPU reference at 65,536; and the grid step against an
+// all-pairs baseline (bench/all_pairs.h) at 65,536 on CUDA and 8,192 on the CPU.
 //
 // The scene is built here, not read from a file: the default ParticleParams, [suction] and
 // [contact] at 30 Hz, a panel as wide as the pile and twice its height, the N particles (capacity
@@ -21,8 +21,8 @@
 // counter), the figure to compare with a model that iterates; the step's neighbour_passes counter
 // says how many a step makes. The instrument's tip is at the middle of the pile's width, one
 // suction radius under its surface (the whole reach in blood), moving sideways at kTipSpeed; its
-// cases run Instrument::act_at, the launches a scene's sub-step makes, with the tip and quota
-// given here.
+// cases run the hooks' act_at, the launches a scene's sub-step makes, with the tip and quota given
+// here.
 // docs/benchmarks.md ("Particles") says what each number means.
 #include <algorithm>
 #include <cmath>
@@ -38,11 +38,16 @@
 
 #include "bench/all_pairs.h"
 #include "bench/bench_util.h"
-#include "core/runtime/backend.h"
-#include "core/effects/suction/suction_hook.h"
+#include "core/effects/contact/contact_hook.h"
+#include "core/effects/contact/contact_params.h"
+#include "core/effects/effect_list.h"
 #include "core/effects/particles/particle_buffers.h"
 #include "core/effects/particles/particle_model.h"
+#include "core/effects/particles/particle_params.h"
+#include "core/effects/suction/suction_hook.h"
+#include "core/effects/suction/suction_params.h"
 #include "core/physics/particles.h"
+#include "core/runtime/backend.h"
 #include "core/scene/scene.h"
 
 namespace bleedsim {
@@ -98,10 +103,10 @@ Scene pile_scene(int n) {
   Scene scene;
   scene.name = "settled pile (bench/particle_bench.cpp)";
   scene.seed = 1;
-  scene.particles = ParticleParams{};
-  scene.suction = SuctionParams{};
-  scene.contact = ContactParams{};
-  ParticleParams& p = *scene.particles;
+  scene.effects.set(ParticleParams{});
+  scene.effects.set(SuctionParams{});
+  scene.effects.set(ContactParams{});
+  ParticleParams& p = scene.effects.get<ParticleParams>();
   p.capacity = n;
   const double pile_height_mm = (rows_for(n) - 1) * std::sqrt(3.0) / 2.0 * p.diameter_mm + p.diameter_mm;
   // Even rows start at one radius from the left edge, odd rows at one diameter: the odd rows'
@@ -110,7 +115,7 @@ Scene pile_scene(int n) {
   scene.domain.height_mm = 2.0 * pile_height_mm;
   // No pixels: draw is not timed here.
   // No particle expires while it is measured: a day (the most a scene may ask), or 1e9 steps.
-  const double steps_per_s = scene.frame_rate_hz * particle_mechanics(p, scene.domain, scene.frame_rate_hz).substeps;
+  const double steps_per_s = resolve_particles(p, scene).steps_per_s;
   p.lifetime_s = std::min(86400.0, 1.0e9 / steps_per_s);
   return scene;
 }
@@ -134,18 +139,20 @@ struct Pile {
   double moving_share = 0.0;     // of the particles, drifting faster than kMovingSpeed
   std::vector<float> last_xy;    // positions at the last measure(), for the drift
   double bottom_overlap = 0.0;   // mm: the bottom row's overlap with the row above, mean
-  std::optional<Instrument> instrument;  // its tip in the settled pile, sucking and touching:
+  std::optional<SuctionHook> suction;    // the instrument's tip in the settled pile, sucking ...
+  std::optional<ContactHook> contact;    // ... and touching:
   ToolSample tip, tip_before;            // where it is, and where it was a sub-step before
-  std::uint32_t flow_quota = 0;          // the default flow's quota in its busiest steps
+  double flow_per_step = 0.0;            // the default flow's particles a sub-step, on average
+  std::uint32_t flow_quota = 0;          // ... and its quota in its busiest steps
   std::uint32_t reach = 0;               // particles within the suction's reach
   int in_body = 0;                       // particles inside the tip's body, which contact moves
 
   Pile(std::unique_ptr<Backend> b, int count)
       : backend(std::move(b)), n(count), threads(int(std::max(1u, std::thread::hardware_concurrency()))),
         scene(pile_scene(count)) {
-    problem = check_params(particle_table(), *scene.particles, scene).message;
+    problem = check_params(particle_table(), scene.effects.get<ParticleParams>(), scene).message;
     if (!problem.empty()) return;
-    const ParticleModel model = make_particle_model(scene);
+    const ParticleModel model = resolve_particles(scene).model;
     args.model = model;
     ParticleArrays& a = args.arrays;
     a.capacity = n;
@@ -165,7 +172,7 @@ struct Pile {
 
     // The lattice: slot s in row s / columns (row 0 at the bottom), spacing one diameter, born.
     const int columns = columns_for(n);
-    const double d = scene.particles->diameter_mm, r = d / 2.0, row_mm = std::sqrt(3.0) / 2.0 * d;
+    const double d = scene.effects.get<ParticleParams>().diameter_mm, r = d / 2.0, row_mm = std::sqrt(3.0) / 2.0 * d;
     const double bottom = scene.domain.height_mm - r;
     std::vector<float> xy(2 * std::size_t(n));
     for (int s = 0; s < n; ++s) {
@@ -204,13 +211,16 @@ struct Pile {
 
     // The instrument: its tip one suction radius under the pile's surface (its highest centre), at
     // the middle of its width. What it does there is measured on the backend, once each, undone.
-    instrument.emplace(scene, *backend, n);
+    const Resolved resolved = resolve(scene);
+    suction.emplace(scene, resolved, *backend, n);
+    contact.emplace(scene, resolved);
     double top = scene.domain.height_mm;  // y grows downward
     for (std::size_t i = 1; i < last_xy.size(); i += 2) top = std::min(top, double(last_xy[i]));
-    tip = {0.0, scene.domain.width_mm / 2.0, top + scene.suction->radius_mm, true, true};
+    tip = {0.0, scene.domain.width_mm / 2.0, top + scene.effects.get<SuctionParams>().radius_mm, true, kEveryButton};
     tip_before = tip;
     tip_before.x_mm -= kTipSpeed * args.model.dt_s;
-    flow_quota = std::uint32_t(std::ceil(instrument->particles_per_step()));
+    flow_per_step = resolved.get<SuctionSettings>().particles_per_step;
+    flow_quota = std::uint32_t(std::ceil(flow_per_step));
     reach = std::uint32_t(taken_by(std::uint32_t(n)));
     in_body = moved_by_contact();
   }
@@ -244,9 +254,8 @@ struct Pile {
   // The instrument's launches in a sub-step: the suction taking up to `quota` (none at 0), the
   // contact when `touching`.
   void instrument_acts(std::uint32_t quota, bool touching) {
-    ToolSample at = tip;
-    at.contact = touching;
-    instrument->act_at(*backend, args, at, tip_before, args.model.dt_s, quota);
+    suction->act_at(*backend, args, tip, quota);
+    if (touching) contact->act_at(*backend, args, tip, tip_before, args.model.dt_s);
   }
   void step_with_instrument() { step(); instrument_acts(flow_quota, true); }
 
@@ -342,7 +351,7 @@ struct Pile {
     last_xy = xy;
     // Each bottom-row particle's deepest overlap with the row above (its lattice neighbours).
     const int columns = columns_for(n);
-    const double d = scene.particles->diameter_mm;
+    const double d = scene.effects.get<ParticleParams>().diameter_mm;
     double overlap = 0.0;
     int counted = 0;
     for (int j = 0; j < columns && j < n; ++j) {
@@ -462,7 +471,7 @@ void time_particles(benchmark::State& state, BackendKind kind, int n, Work work)
       state.counters["candidates"] = pile->reach;
       state.counters["quota"] = quota;
       state.counters["taken"] = double(pile->taken_by(quota));
-      state.counters["flow_particles/step"] = pile->instrument->particles_per_step();
+      state.counters["flow_particles/step"] = pile->flow_per_step;
     }
     if (work == Work::contact || work == Work::step_with_instrument) state.counters["in_body"] = pile->in_body;
     if (work == Work::step_with_instrument) state.counters["step_ms"] = grid_ms;

@@ -12,8 +12,10 @@
 #include <vector>
 
 #include "bench/bench_util.h"
-#include "core/simulation/simulation.h"
+#include "core/effects/cuts.h"
+#include "core/effects/spread/spread_params.h"
 #include "core/runtime/tissue.h"
+#include "core/simulation/simulation.h"
 
 namespace bleedsim {
 namespace {
@@ -32,15 +34,16 @@ Scene scene_with_cuts(int settled) {
   scene.duration_s = (kWarmFrames + kTimedFrames + 2) / kFrameRate;
   scene.tissue = procedural_tissue(640, 480, 1);
   scene.tissue_source = "procedural";
-  scene.spread = SpreadParams{2.0, kFrameRate / 10.0};  // full ten frames after its cut
+  scene.effects.set(SpreadParams{2.0, kFrameRate / 10.0});  // full ten frames after its cut
   std::mt19937_64 random(7);
   std::uniform_real_distribution<double> patch_x(1.0, 9.0), patch_y(1.0, 7.0), x(12.0, 31.0), y(1.0, 23.0);
   for (int c = 0; c < settled; ++c) {
-    Cut cut = scene.cut_at(patch_x(random), patch_y(random), 0.0);
+    Cut cut = cut_at(scene, patch_x(random), patch_y(random), 0.0);
     cut.growth_per_s = 1000.0;  // full by the first frame's time, 1/30 s
     scene.cuts.push_back(cut);
   }
-  for (int f = 0; f < kWarmFrames + kTimedFrames + 1; ++f) scene.cuts.push_back(scene.cut_at(x(random), y(random), f / kFrameRate));
+  for (int f = 0; f < kWarmFrames + kTimedFrames + 1; ++f)
+    scene.cuts.push_back(cut_at(scene, x(random), y(random), f / kFrameRate));
   return scene;
 }
 

@@ -12,6 +12,7 @@
 #include "bench/bench_util.h"
 #include "core/effects/blend/blend_stage.h"
 #include "core/effects/spread/spread_tiles.h"
+#include "core/physics/optics_tables.h"
 #include "core/physics/pixel_kernels.h"
 #include "core/runtime/backend.h"
 #include "core/runtime/tissue.h"

@@ -7,10 +7,10 @@
 #include <vector>
 
 #include "core/io/scenario.h"
-#include "core/runtime/backend.h"
-#include "core/simulation/simulation.h"
 #include "core/io/trace_synth.h"
+#include "core/runtime/backend.h"
 #include "core/scaleout/ranks.h"
+#include "core/simulation/simulation.h"
 #include "core/study/study.h"
 
 namespace bleedsim::cli {

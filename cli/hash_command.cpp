@@ -4,9 +4,9 @@
 #include <string>
 
 #include "cli/commands.h"
-#include "core/simulation/frame_hash.h"
-#include "core/runtime/hash.h"
 #include "core/io/scenario.h"
+#include "core/runtime/hash.h"
+#include "core/simulation/frame_hash.h"
 
 namespace bleedsim::cli {
 

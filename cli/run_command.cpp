@@ -19,13 +19,13 @@
 #include "cli/output_queue.h"
 #include "cli/progress.h"
 #include "cli/run_files.h"
-#include "core/runtime/build_info.h"
 #include "core/io/contact_sheet.h"
 #include "core/io/hdf5_writer.h"
-#include "core/mesh/view_render.h"
 #include "core/io/scenario.h"
-#include "core/simulation/simulation.h"
+#include "core/mesh/view_render.h"
+#include "core/runtime/build_info.h"
 #include "core/runtime/timing_summary.h"
+#include "core/simulation/simulation.h"
 
 namespace bleedsim::cli {
 namespace {

@@ -6,15 +6,17 @@
 #include <string>
 
 #include "cli/commands.h"
-#include "core/runtime/memory.h"
-#include "core/haptics/haptics.h"
+#include "core/effects/cuts.h"
+#include "core/effects/effect_list.h"
 #include "core/effects/pipeline.h"
-#include "core/effects/particles/particle_model.h"
+#include "core/effects/resolved.h"
 #include "core/effects/surface/surface_stage.h"
-#include "core/io/scenario.h"
+#include "core/effects/vessels/vessel_params.h"
+#include "core/haptics/haptics.h"
 #include "core/haptics/trace_replay.h"
+#include "core/io/scenario.h"
+#include "core/runtime/memory.h"
 #include "core/runtime/message_text.h"
-#include "core/bleeding/vessel_density.h"
 
 namespace bleedsim::cli {
 namespace {
@@ -49,77 +51,16 @@ std::int64_t describe_haptics(const Scene& scene) {
   return cuts;
 }
 
-// The particle model as the parameters make it (docs/particles.md): the contact, the time step, the
-// largest drop the mucosa holds, and whether the ring can hold all the blood the cuts give.
-void describe_particles(const Scene& scene, std::int64_t stylus_cuts) {
-  const ParticleParams& p = *scene.particles;
-  const ParticleMechanics m = particle_mechanics(p, scene.domain, scene.frame_rate_hz);
-  std::printf("  particles  stiffness %.3g/s² (a %.3g mm pile at %.3g compression), %d sub-steps of %.3g ms "
-              "(limit %.3g ms)\n",
-              m.stiffness_per_s2, m.depth_mm, p.compression, m.substeps, m.dt_s * 1e3, m.step_limit_s * 1e3);
-  const DropLimit drop = critical_drop(p, scene.domain, scene.frame_rate_hz);
-  if (drop.holds_any)
-    std::printf("  film       %.3g mm thick; the mucosa holds any drop against gravity\n", m.film_mm);
-  else if (drop.volume_mm3 == 0)
-    std::printf("  film       %.3g mm thick; the mucosa holds no drop against gravity (no pinning)\n", m.film_mm);
-  else
-    std::printf("  film       %.3g mm thick; the mucosa holds drops up to %.3g mm³ (radius %.3g mm) against gravity\n",
-                m.film_mm, drop.volume_mm3, drop.radius_mm);
-  // The ring overwrites live blood when more can be alive at once than it has slots: a cut has at
-  // most what it bleeds in its first lifetime alive (its flow only falls).
-  // A scripted cut bleeds by the vessels along its wound; a stylus' cut is counted at its full flow.
-  std::vector<Cut> cuts;
-  for (const Cut& cut : scene.cuts) cuts.push_back(with_vessels(scene, cut));
+// The cuts the run will make: the scene's as they bleed there, and the stylus' (each counted at its
+// full flow, a wound of cut_spacing_mm).
+RunOutline outline(const Scene& scene, std::int64_t stylus_cuts) {
+  RunOutline run;
+  for (const Cut& cut : scene.cuts) run.cuts.push_back(cut_as_made(scene, cut));
   for (std::int64_t i = 0; i < stylus_cuts; ++i) {
-    cuts.push_back(scene.cut_at(0, 0, 0));
-    cuts.back().wound_mm = scene.haptics->cut_spacing_mm;
+    run.cuts.push_back(cut_at(scene, 0, 0, 0));
+    run.cuts.back().wound_mm = scene.haptics->cut_spacing_mm;
   }
-  double alive = 0;
-  const PulseParams* pulse = scene.pulse ? &*scene.pulse : nullptr;
-  for (const Cut& cut : cuts)
-    alive += std::floor(cut_blood_mm3(cut, cut.start_s + p.lifetime_s, pulse) / p.particle_volume_mm3);
-  if (alive > p.capacity)
-    std::printf("warning: the cuts can have up to %.0f particles alive at once (what each bleeds within a %.3g s "
-                "lifetime), more than the ring's %d slots: it will overwrite live blood; raise "
-                "[particles].capacity or shorten lifetime_s\n",
-                alive, p.lifetime_s, p.capacity);
-}
-
-// Where and how hard the wounds bleed, and the instrument (docs/bleeding.md).
-void describe_bleeding(const Scene& scene) {
-  if (scene.vessels) {
-    std::printf("  vessels    each wound's flow times the map's mean along it; map %s", scene.vessels->map.c_str());
-    if (!scene.cuts.empty()) std::printf("; the cuts' means");
-    for (const Cut& cut : scene.cuts) {
-      const Cut bleeding = with_vessels(scene, cut);
-      std::printf(" %.3g%s", bleeding.vessel_density, bleeding.arterial ? " (arterial)" : "");
-    }
-    std::printf("\n");
-  }
-  if (scene.pulse) {
-    const PulseParams& q = *scene.pulse;
-    std::printf("  pulse      %g beats a minute, w(t) = 1 + %g sin(2πft) + %g sin(4πft); arterial: cuts marked so%s\n",
-                q.heart_rate_per_min, q.systolic, q.dicrotic,
-                scene.vessels ? (", and wounds of mean vessel density ≥ " + format_number(q.arterial_density)).c_str()
-                              : "");
-  }
-  if (!scene.suction && !scene.contact) return;
-  const std::string instrument =
-      scene.tips.empty()
-          ? "the stylus"
-          : "a scripted tip, " + std::to_string(scene.tips.size()) + " points from " +
-                format_number(scene.tips.front().t_s) + " s to " + format_number(scene.tips.back().t_s) + " s";
-  if (scene.suction) {
-    const SuctionParams& s = *scene.suction;
-    std::printf("  suction    %s: reach %g mm, up to %g mm³/s (%.3g particles a sub-step)", instrument.c_str(),
-                s.radius_mm, s.max_flow_mm3_per_s,
-                s.max_flow_mm3_per_s / particle_steps_per_s(scene) / scene.particles->particle_volume_mm3);
-    if (scene.tips.empty()) std::printf(", in contact with a button of 0x%x held", unsigned(s.buttons));
-    std::printf("\n");
-  }
-  if (scene.contact)
-    std::printf("  contact    %s: particle centres kept %g mm from the tip (its radius and a particle's)\n",
-                instrument.c_str(), scene.contact->tip_radius_mm + scene.particles->diameter_mm / 2.0);
+  return run;
 }
 
 }  // namespace
@@ -127,8 +68,9 @@ void describe_bleeding(const Scene& scene) {
 int validate_command(const std::string& scenario) {
   // The tissue is not drawn, but a vessel map is read: the cuts' bleeding depends on it.
   Scenario file = load_scenario(scenario, ReadTissue::header_only);
-  if (file.scene.vessels) file = load_scenario(scenario);
+  if (file.scene.effects.has<VesselParams>()) file = load_scenario(scenario);
   const Scene& scene = file.scene;
+  const Resolved resolved = resolve(scene);
   const OutputSpec& out = file.output;
   const Domain& d = scene.domain;
   std::string stages;
@@ -149,9 +91,9 @@ int validate_command(const std::string& scenario) {
   std::printf("  cuts       %zu%s\n", scene.cuts.size(), scene.trace ? " scripted, and the stylus' (below)" : "");
   std::printf("  stages     %s\n", stages.c_str());
   const std::int64_t stylus_cuts = scene.trace ? describe_haptics(scene) : 0;
-  if (scene.particles) describe_particles(scene, stylus_cuts);
-  describe_bleeding(scene);
-  std::printf("  memory     %s on the backend\n", human_bytes(double(Pipeline::backend_bytes(scene))).c_str());
+  std::printf("%s", describe_effects(scene, resolved, outline(scene, stylus_cuts)).c_str());
+  std::printf("  memory     %s on the backend\n",
+              human_bytes(double(Pipeline::backend_bytes(scene, resolved))).c_str());
   std::printf("  output     %s (HDF5 %s, PNG %s)\n", out.dir.c_str(), out.hdf5 ? "on" : "off",
               out.png_every > 0 ? ("every " + std::to_string(out.png_every)).c_str() : "off");
   return 0;

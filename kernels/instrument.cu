@@ -1,4 +1,4 @@
-// The CUDA twin of the instrument: launches of core/physics/instrument.h. Nearest first is a radix
+// The CUDA twin of the suction: launches of core/physics/instrument.h. Nearest first is a radix
 // select in one block: the quota-th smallest candidate key found eight bits at a time from a
 // histogram of the candidates that share the digits found so far (integer counts, so the same in
 // any order); the keys are unique, so those at or below it are exactly the quota nearest, the set
@@ -65,27 +65,14 @@ __global__ void select_nearest_kernel(InstrumentArgs a) {
   }
 }
 
-__global__ void contact_kernel(InstrumentArgs a) {
-  const int t = blockIdx.x * blockDim.x + threadIdx.x;
-  if (t < a.live_count) keep_out_of_tip(a, live_slot(a, t));
-}
-
 }  // namespace
 
-void cuda_twin(InstrumentPhase phase, const InstrumentArgs& a) {
+void cuda_twin(const InstrumentArgs& a) {
   if (a.live_count == 0) return;
-  switch (phase) {
-    case InstrumentPhase::aspirate:
-      candidates_kernel<<<blocks_for(a.live_count), kThreads>>>(a);
-      check_launch("candidates_kernel");
-      select_nearest_kernel<<<1, kSelectThreads>>>(a);
-      check_launch("select_nearest_kernel");
-      break;
-    case InstrumentPhase::contact:
-      contact_kernel<<<blocks_for(a.live_count), kThreads>>>(a);
-      check_launch("contact_kernel");
-      break;
-  }
+  candidates_kernel<<<blocks_for(a.live_count), kThreads>>>(a);
+  check_launch("candidates_kernel");
+  select_nearest_kernel<<<1, kSelectThreads>>>(a);
+  check_launch("select_nearest_kernel");
 }
 
 }  // namespace bleedsim

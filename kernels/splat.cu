@@ -1,7 +1,9 @@
 // The CUDA twin of the splat: a thread per slot deposits with integer atomics, and a block per tile
 // converts the sum (and downsamples the film).
 #include <cstddef>
+#include <iterator>
 #include <stdexcept>
+#include <utility>
 
 #include "core/physics/splat.h"
 #include "kernels/cuda_check.h"
@@ -48,9 +50,16 @@ __global__ void deposit_kernel(SplatArgs a) {
 
 // Each thread reads its pixels' sums before it writes any film (or sets a sum back to zero), so its
 // reads are in flight together.
-// With a downsample factor (1, 2 or 4; 0: none), the block keeps its tile's film and takes the
-// means of the blocks in it (a tile's side, 32, is a multiple of every factor: no block crosses a
-// tile's edge); the factor is the kernel's constant, so a block's loops unroll.
+// With a downsample factor (one of kBlurFactors; 0: none), the block keeps its tile's film and
+// takes the means of the blocks in it (a tile's side is a multiple of every factor: no block
+// crosses a tile's edge); the factor is the kernel's constant, so a block's loops unroll.
+constexpr bool tiles_hold_whole_blocks() {
+  for (const int f : kBlurFactors)
+    if (kSplatTilePx % f != 0) return false;
+  return true;
+}
+static_assert(tiles_hold_whole_blocks(), "a blur block would cross a splat tile's edge");
+
 template <int Factor>
 __global__ void film_kernel(SplatArgs a) {
   const int tile = blockIdx.x;
@@ -109,18 +118,25 @@ __global__ void film_kernel(SplatArgs a) {
   }
 }
 
+// The film's kernel for the blur's factor: one instantiation for each of kBlurFactors. False when
+// the factor is none of them.
+template <std::size_t... I>
+bool launch_film_downsampled(const SplatArgs& a, unsigned tiles, std::index_sequence<I...>) {
+  return (
+      (a.downsample.factor == kBlurFactors[I] ? (film_kernel<kBlurFactors[I]><<<tiles, kThreads>>>(a), true) : false) ||
+      ...);
+}
+
 }  // namespace
 
 void cuda_twin(const SplatArgs& a) {
   const unsigned tiles = unsigned(splat_tile_count(a.grid));
   deposit_kernel<<<(a.capacity + kThreads - 1) / kThreads, kThreads>>>(a);
   check_launch("deposit_kernel");
-  switch (a.downsample.low ? a.downsample.factor : 0) {
-    case 0: film_kernel<0><<<tiles, kThreads>>>(a); break;
-    case 1: film_kernel<1><<<tiles, kThreads>>>(a); break;
-    case 2: film_kernel<2><<<tiles, kThreads>>>(a); break;
-    case 4: film_kernel<4><<<tiles, kThreads>>>(a); break;
-    default: throw std::logic_error("splat: a downsample factor other than 1, 2 or 4");
+  if (!a.downsample.low) {
+    film_kernel<0><<<tiles, kThreads>>>(a);
+  } else if (!launch_film_downsampled(a, tiles, std::make_index_sequence<std::size(kBlurFactors)>{})) {
+    throw std::logic_error("splat: a downsample factor not in kBlurFactors");
   }
   check_launch("film_kernel");
 }

@@ -1,10 +1,9 @@
-// The CPU reference of the instrument: loops over core/physics/instrument.h. Nearest first is a
+// The CPU reference of the suction: loops over core/physics/instrument.h. Nearest first is a
 // partial sort (nth_element) of the candidates' keys: they are unique, so it selects the same set
 // as the GPU's radix select.
 #include <algorithm>
 
 #include "core/physics/instrument.h"
-#include "reference_cpu/parallel_rows.h"
 
 namespace bleedsim {
 namespace {
@@ -25,17 +24,6 @@ void aspirate_nearest(const InstrumentArgs& a) {
 
 }  // namespace
 
-void cpu_twin(InstrumentPhase phase, const InstrumentArgs& a, int threads) {
-  switch (phase) {
-    case InstrumentPhase::aspirate:
-      aspirate_nearest(a);
-      break;
-    case InstrumentPhase::contact:
-      // Each particle moves only itself: any thread count gives the same bytes.
-      parallel_rows(a.live_count, threads_for_particles(a.live_count, threads),
-                    [&](int t) { keep_out_of_tip(a, live_slot(a, t)); });
-      break;
-  }
-}
+void cpu_twin(const InstrumentArgs& suction, int) { aspirate_nearest(suction); }
 
 }  // namespace bleedsim

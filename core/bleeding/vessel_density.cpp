@@ -35,13 +35,10 @@ double mean_vessel_density(const Scene& scene, double x0_mm, double y0_mm, doubl
   return sum / steps;
 }
 
-Cut with_vessels(const Scene& scene, Cut cut) {
-  if (!scene.vessels) return cut;
+double wound_vessel_density(const Scene& scene, const Cut& cut) {
   const double half = cut.wound_mm / 2.0, a = cut.wound_angle_deg * kDegree;
   const double dx = half * std::cos(a), dy = half * std::sin(a);
-  cut.vessel_density = mean_vessel_density(scene, cut.x_mm - dx, cut.y_mm - dy, cut.x_mm + dx, cut.y_mm + dy);
-  if (scene.pulse && cut.vessel_density >= scene.pulse->arterial_density) cut.arterial = true;
-  return cut;
+  return mean_vessel_density(scene, cut.x_mm - dx, cut.y_mm - dy, cut.x_mm + dx, cut.y_mm + dy);
 }
 
 }  // namespace bleedsim

@@ -1,6 +1,7 @@
 #pragma once
 // Where a wound meets the vessels (docs/bleeding.md, "Vessels"): the mean of the scene's vessel
-// density along a cut's wound sets how hard it bleeds, and, with a pulse, whether it is arterial.
+// density map along a cut's wound sets how hard it bleeds, and, with a pulse, whether it is arterial
+// (with_vessels, core/effects/vessels/vessel_params.h, applies it to a cut).
 #include "core/scene/scene.h"
 
 namespace bleedsim {
@@ -11,9 +12,7 @@ namespace bleedsim {
 // reads the one point.
 double mean_vessel_density(const Scene& scene, double x0_mm, double y0_mm, double x1_mm, double y1_mm);
 
-// The cut as it bleeds in this scene: without [vessels], unchanged; with them, its vessel density
-// is the map's mean along its wound (wound_mm long, centred on the cut, at wound_angle_deg), and,
-// with [pulse] too, a wound reaching pulse.arterial_density is arterial.
-Cut with_vessels(const Scene& scene, Cut cut);
+// The mean along a cut's wound: wound_mm long, centred on the cut, at wound_angle_deg.
+double wound_vessel_density(const Scene& scene, const Cut& cut);
 
 }  // namespace bleedsim

@@ -65,10 +65,10 @@ std::vector<const StageKind*> Pipeline::plan(const Scene& scene) {
   return order;
 }
 
-Pipeline::Pipeline(const Scene& scene, State& state, Backend& backend) {
+Pipeline::Pipeline(const Scene& scene, const Resolved& resolved, State& state, Backend& backend) {
   for (const StageKind* kind : plan(scene)) {
     const std::size_t first = state.fields.size();
-    stages_.push_back(kind->make(*kind, scene, state, backend));
+    stages_.push_back(kind->make(*kind, scene, resolved, state, backend));
     if (!added_as_declared(*kind, state, first))
       throw std::logic_error(std::string("the ") + kind->name + " stage did not add the fields its kind declares");
   }
@@ -91,13 +91,15 @@ std::vector<std::string> Pipeline::stage_names(const Scene& scene) {
   return names;
 }
 
-MemoryParts Pipeline::memory(const Scene& scene) {
+MemoryParts Pipeline::memory(const Scene& scene, const Resolved& resolved) {
   MemoryParts parts;
   for (const StageKind* kind : plan(scene))
-    for (MemoryPart& part : kind->memory_for(scene)) parts.push_back(std::move(part));
+    for (MemoryPart& part : kind->memory_for(scene, resolved)) parts.push_back(std::move(part));
   return parts;
 }
 
-std::size_t Pipeline::backend_bytes(const Scene& scene) { return total_bytes(memory(scene)).to<std::size_t>(); }
+std::size_t Pipeline::backend_bytes(const Scene& scene, const Resolved& resolved) {
+  return total_bytes(memory(scene, resolved)).to<std::size_t>();
+}
 
 }  // namespace bleedsim

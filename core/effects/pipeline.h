@@ -20,8 +20,9 @@ struct StageReport {
 
 class Pipeline {
  public:
-  // Throws std::invalid_argument, before anything is allocated, as plan() does.
-  Pipeline(const Scene& scene, State& state, Backend& backend);
+  // Builds the stages from the scene and its settings, resolved once (resolve(scene)). Throws
+  // std::invalid_argument, before anything is allocated, as plan() does.
+  Pipeline(const Scene& scene, const Resolved& resolved, State& state, Backend& backend);
   void run_frame(const Scene& scene, State& state, Backend& backend);
   std::vector<StageReport> report(const Backend& backend) const;
 
@@ -36,8 +37,8 @@ class Pipeline {
   // Their names, without building them.
   static std::vector<std::string> stage_names(const Scene& scene);
   // Backend memory those stages will allocate, by the key that sets each part's size, and in all.
-  static MemoryParts memory(const Scene& scene);
-  static std::size_t backend_bytes(const Scene& scene);
+  static MemoryParts memory(const Scene& scene, const Resolved& resolved);
+  static std::size_t backend_bytes(const Scene& scene, const Resolved& resolved);
 
  private:
   std::vector<std::unique_ptr<Stage>> stages_;

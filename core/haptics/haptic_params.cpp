@@ -2,9 +2,9 @@
 
 #include <cmath>
 
-#include "core/scene/trace.h"
 #include "core/runtime/message_text.h"
 #include "core/scene/scene.h"
+#include "core/scene/trace.h"
 
 namespace bleedsim {
 namespace {

@@ -4,11 +4,12 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "core/effects/cuts.h"
 
 namespace bleedsim {
 
 HapticLoop::HapticLoop(const Scene& scene)
-    : domain_(scene.domain), cut_template_(scene.cut_at(0, 0, 0)), mesh_(scene.mesh) {
+    : domain_(scene.domain), cut_template_(cut_at(scene, 0, 0, 0)), mesh_(scene.mesh) {
   if (!scene.haptics) throw std::invalid_argument("a haptic loop needs a scene with [haptics]");
   params_ = *scene.haptics;
   if (const ParamProblem problem = check_params(haptic_table(), params_, scene))

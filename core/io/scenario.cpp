@@ -10,8 +10,12 @@
 #include <type_traits>
 #include <utility>
 
+#include "core/effects/cuts.h"
+#include "core/effects/effect_list.h"
 #include "core/effects/pipeline.h"
 #include "core/effects/stage_kinds.h"
+#include "core/effects/tips.h"
+#include "core/haptics/haptic_params.h"
 #include "core/io/mesh_obj.h"
 #include "core/io/text_file.h"
 #include "core/io/tissue_png.h"
@@ -190,9 +194,19 @@ class Reader {
   }
 
   // Reads `table`'s keys from `t` (null: the file left the whole table out) into `params`, under
-  // `at` ("particles", "cut[2]"); what the file wrote of keys no member holds comes back.
+  // `at` ("particles", "cut[2]"), and checks them against the table's ranges and rules; what the
+  // file wrote of keys no member holds comes back.
   template <class P>
   Written read(const toml::table* t, const ParamTable<P>& table, P& params, const Scene& scene, const std::string& at) {
+    const Written written = read_keys(t, table, params, scene, at);
+    check(table, params, scene, at);
+    return written;
+  }
+
+  // read() without the rules: an effect's rules may be about tables read after it (check()).
+  template <class P>
+  Written read_keys(const toml::table* t, const ParamTable<P>& table, P& params, const Scene& scene,
+                    const std::string& at) {
     Written written{s_.path, {}, {}, {}};
     std::vector<std::string> known;
     for (const Param<P>& param : table.params) known.push_back(param.key);
@@ -211,8 +225,13 @@ class Reader {
     if (table.resolve)
       if (const ParamProblem problem = table.resolve(params, written, scene))
         fail({at + "." + problem.key, problem.message}, at);
-    if (const ParamProblem problem = check_params(table, params, scene, at)) fail(problem, at);
     return written;
+  }
+
+  // `params` against `table`'s ranges and rules, a problem placed at its key.
+  template <class P>
+  void check(const ParamTable<P>& table, const P& params, const Scene& scene, const std::string& at) const {
+    if (const ParamProblem problem = check_params(table, params, scene, at)) fail(problem, at);
   }
 
  private:
@@ -313,25 +332,33 @@ class Reader {
 // of this scene writes (a [blur] or a [trail] without [particles]).
 void refuse_unwired_stages(Reader& r, const toml::table& root, Scenario& s) {
   Scene declared = s.scene;
-  if (root.contains("spread")) declared.spread.emplace();
-  if (root.contains("particles")) declared.particles.emplace();
-  if (root.contains("blur")) declared.blur.emplace();
-  if (root.contains("trail")) declared.trail.emplace();
+  for_each_effect([&](const auto& effect) {
+    using P = typename std::decay_t<decltype(effect)>::Params;
+    if (root.contains(effect.table().name)) declared.effects.set(P{});
+  });
   if (const ParamProblem problem = Pipeline::wiring_problem(declared)) {
     r.table(root, problem.key);
     throw InputError(s.place_of(problem.key), problem.key, problem.message);
   }
 }
 
-// An effect's table: read into the scene when the file declares it (even empty), absent otherwise.
-template <class P>
-void read_effect(Reader& r, const toml::table& root, const ParamTable<P>& table, std::optional<P>& effect,
-                 const Scene& scene) {
-  const toml::table* t = r.table(root, table.name);
-  if (!t) return;
-  P params;
-  r.read(t, table, params, scene, table.name);
-  effect = params;
+// Every effect's table: read into the scene when the file declares it (even empty), absent
+// otherwise. Its rules are checked once every table they may name has been read (check_effects).
+void read_effects(Reader& r, const toml::table& root, Scene& scene) {
+  for_each_effect([&](const auto& effect) {
+    const auto& table = effect.table();
+    const toml::table* t = r.table(root, table.name);
+    if (!t) return;
+    typename std::decay_t<decltype(effect)>::Params params;
+    r.read_keys(t, table, params, scene, table.name);
+    scene.effects.set(params);
+  });
+}
+
+void check_effects(const Reader& r, const Scene& scene) {
+  for_each_declared_effect(scene, [&](const auto& effect, const auto& params) {
+    r.check(effect.table(), params, scene, effect.table().name);
+  });
 }
 
 // The [[cut]] or [[tip]] tables, in the order written; each is named "cut[i]" in messages.
@@ -387,18 +414,22 @@ void read_haptics(Reader& r, const toml::table& root, Scenario& s) {
 }
 
 // A tissue mesh places the tissue in the device frame itself, so the flat panel's placement under
-// the stylus is not the scene's to give; and suction and contact do not yet act on a mesh.
+// the stylus is not the scene's to give; and the hooks in the particle step (the instrument's suction
+// and contact) do not yet act on a mesh.
 void refuse_what_a_mesh_replaces(const Scenario& s) {
   for (const char* key : {"haptics.surface_z_mm", "haptics.panel_origin_mm", "haptics.scale"})
     if (s.places.count(key))
       throw InputError(s.place_of(key), key,
                        "places the flat panel under the stylus; with tissue.mesh the mesh's placement "
                        "(tissue.mesh_position_mm, mesh_rotation_deg, mesh_scale) says where the tissue is");
-  for (const char* table : {"suction", "contact"})
-    if (s.places.count(table))
+  for_each_effect([&](const auto& effect) {
+    const std::string table = effect.table().name;
+    if (!effect.hooks.empty() && s.places.count(table))
       throw InputError(s.place_of(table), table,
-                       std::string("the instrument's ") + table + " acts on the flat panel only; a scene with "
-                       "tissue.mesh cannot have it yet");
+                       "the instrument's " + table +
+                           " acts on the flat panel only; a scene with "
+                           "tissue.mesh cannot have it yet");
+  });
 }
 
 // The tissue comes last: it is the one large allocation, made only once the scene is known to fit:
@@ -442,10 +473,11 @@ TissueFile read_tissue_table(Reader& r, const toml::table& root, Scenario& s) {
 
 void read_tissue(const TissueFile& tissue, Scenario& s, ReadTissue how) {
   Scene& scene = s.scene;
-  MemoryParts parts = Pipeline::memory(scene);
+  MemoryParts parts = Pipeline::memory(scene, resolve(scene));
   parts.push_back(scene.domain.memory(4));
   const SourcePlace texture_place = s.place_of("tissue.texture"), map_place = s.place_of("vessels.map");
-  const bool procedural_vessels = scene.vessels && scene.vessels->map == "procedural";
+  const VesselParams* vessels = scene.effects.find<VesselParams>();
+  const bool procedural_vessels = vessels && vessels->map == "procedural";
   if (procedural_vessels && !tissue.texture.empty())
     throw s.placed(InputError(SourcePlace{}, "vessels.map",
                      "\"procedural\" reads the procedural tissue's vessels, and this scene's tissue is a texture: "
@@ -458,10 +490,10 @@ void read_tissue(const TissueFile& tissue, Scenario& s, ReadTissue how) {
   }
   // The vessels' map, like the tissue's texture: the PNG's header read and its memory counted first.
   std::string map_file;
-  if (scene.vessels) {
+  if (vessels) {
     parts.push_back({"vessels.map", "the vessel density map", scene.domain.pixels() * Count(sizeof(float))});
     if (!procedural_vessels) {
-      map_file = beside(s, scene.vessels->map);
+      map_file = beside(s, vessels->map);
       parts.push_back(texture_memory(read_tissue_png_header(map_file, map_place, "vessels.map"), "vessels.map"));
     }
   }
@@ -503,12 +535,12 @@ InputError Scenario::placed(const InputError& error) const {
 }
 
 std::vector<TableView> scenario_tables() {
-  return {describe(scene_table()),    describe(tissue_table()), describe(spread_table()),
-          describe(particle_table()), describe(blur_table()),   describe(trail_table()),
-          describe(optics_table()),   describe(pulse_table()),  describe(vessel_table()),
-          describe(haptic_table()),   describe(suction_table()), describe(contact_table()),
-          describe(cut_table()),      describe(tip_table()),     describe(view_table()),
-          describe(output_table())};
+  std::vector<TableView> tables{describe(scene_table()), describe(tissue_table())};
+  for (TableView& effect : effect_tables()) tables.push_back(std::move(effect));
+  for (TableView table : {describe(haptic_table()), describe(cut_table()), describe(tip_table()),
+                          describe(view_table()), describe(output_table())})
+    tables.push_back(std::move(table));
+  return tables;
 }
 
 const ParamView& scenario_param(const std::string& key) {
@@ -538,19 +570,13 @@ Scenario parse_scenario(const std::string& text, const std::string& path, ReadTi
   if (!scene) throw InputError(SourcePlace{path, 0, 0}, "scene", "missing the [scene] table (required)");
   r.read(scene, scene_table(), s.scene, s.scene, "scene");
   refuse_unwired_stages(r, root, s);
-  read_effect(r, root, spread_table(), s.scene.spread, s.scene);
-  read_effect(r, root, particle_table(), s.scene.particles, s.scene);
-  read_effect(r, root, blur_table(), s.scene.blur, s.scene);
-  read_effect(r, root, trail_table(), s.scene.trail, s.scene);
-  read_effect(r, root, optics_table(), s.scene.optics, s.scene);
-  read_effect(r, root, pulse_table(), s.scene.pulse, s.scene);
-  read_effect(r, root, vessel_table(), s.scene.vessels, s.scene);
-  read_each(r, root, cut_table(), s.scene.cuts, s);
+  read_effects(r, root, s.scene);
   read_haptics(r, root, s);
-  // The instrument: its path, then what acts through it, then the path as a whole.
   read_each(r, root, tip_table(), s.scene.tips, s);
-  read_effect(r, root, contact_table(), s.scene.contact, s.scene);
-  read_effect(r, root, suction_table(), s.scene.suction, s.scene);
+  // The effects' rules once the instrument is known (the suction needs one), then the cuts, whose
+  // defaults and rules come from the effects, then the path as a whole.
+  check_effects(r, s.scene);
+  read_each(r, root, cut_table(), s.scene.cuts, s);
   if (const ParamProblem problem = tip_path_problem(s.scene))
     throw InputError(s.place_of(problem.key), problem.key, problem.message);
   const TissueFile tissue_file = read_tissue_table(r, root, s);

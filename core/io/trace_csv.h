@@ -7,9 +7,9 @@
 #include <optional>
 #include <string>
 
-#include "core/scene/trace.h"
 #include "core/runtime/input_error.h"
 #include "core/runtime/memory.h"
+#include "core/scene/trace.h"
 
 namespace bleedsim {
 

@@ -8,8 +8,8 @@
 
 #include <Eigen/Geometry>
 
-#include "core/effects/blend/blend_stage.h"
 #include "core/physics/optics.h"
+#include "core/physics/optics_tables.h"
 #include "core/runtime/message_text.h"
 
 namespace bleedsim {

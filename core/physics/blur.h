@@ -29,11 +29,26 @@ struct BlurArgs {
   float* blurred;       // width × height: the result
 };
 
+// The blur's downsampling factors: the one list that [blur].downsample's range, the splat's CUDA
+// launch (a kernel for each) and the study's ladder read. Each a power of two, so that a block's
+// mean scales by an exact inverse (inverse_factor).
+constexpr int kBlurFactors[] = {1, 2, 4};
 
-// 1 / factor, exactly: the factor is 1, 2 or 4, so multiplying by this scales by a power of two,
-// which rounds the same real number as dividing by the factor does, to the bit, and spares the
-// pixel a division, a long sequence on the GPU.
-BLEEDSIM_HD inline float inverse_factor(int factor) { return factor == 4 ? 0.25f : factor == 2 ? 0.5f : 1.0f; }
+// 1 / factor, exactly, for a power of two: halvings of 1, each exact. Multiplying by it rounds the
+// same real number as dividing by the factor does, to the bit, and spares the pixel a division, a
+// long sequence on the GPU.
+BLEEDSIM_HD constexpr float inverse_factor(int factor) {
+  float inverse = 1.0f;
+  for (int f = factor; f > 1; f /= 2) inverse *= 0.5f;
+  return inverse;
+}
+
+constexpr bool blur_factors_are_powers_of_two() {
+  for (const int f : kBlurFactors)
+    if (f <= 0 || (f & (f - 1)) != 0) return false;
+  return true;
+}
+static_assert(blur_factors_are_powers_of_two(), "inverse_factor is exact only for powers of two");
 
 // Downsample: the mean of the factor × factor block (the part of it inside the panel, at an edge),
 // summed row by row, each left to right, film(x, y) giving the film at panel pixel (x, y). A whole

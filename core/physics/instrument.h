@@ -27,8 +27,6 @@ struct ToolTip {
   float body_mm;           // contact: the tip's radius plus a particle's: no centre nearer than this
 };
 
-enum class InstrumentPhase { aspirate, contact };
-
 struct InstrumentArgs {
   ParticleModel model;
   ParticleArrays arrays;
@@ -163,8 +161,16 @@ BLEEDSIM_HD inline void keep_out_of_tip(const InstrumentArgs& a, int slot) {
   }
 }
 
-// The twins: one phase over host memory (CPU reference) or device memory (CUDA).
-void cpu_twin(InstrumentPhase phase, const InstrumentArgs& args, int threads);
-void cuda_twin(InstrumentPhase phase, const InstrumentArgs& args);
+// The contact as a per-particle functor (core/physics/particle_kernels.h runs it).
+struct KeepOutOfTip {
+  InstrumentArgs a;
+  BLEEDSIM_HD int count() const { return a.live_count; }
+  BLEEDSIM_HD void operator()(int t) const { keep_out_of_tip(a, live_slot(a, t)); }
+};
+
+// The suction's twins, which InstrumentArgs selects: the quota's nearest candidates aspirated, over
+// host memory (CPU reference) or device memory (CUDA).
+void cpu_twin(const InstrumentArgs& suction, int threads);
+void cuda_twin(const InstrumentArgs& suction);
 
 }  // namespace bleedsim

@@ -3,7 +3,7 @@
 // haemoglobin on its way down to the tissue and back up (Beer–Lambert, twice the depth), from a
 // headlight at the lens, with the specular highlight wet blood shows where its surface faces the
 // lens. Every function is one IEEE operation at a time, with the tables made on the host
-// (fill_optics_tables() in core/effects/blend/blend_stage.h), so both backends give the same bytes.
+// (optics_tables(), core/physics/optics_tables.h), so both backends give the same bytes.
 #include <cmath>
 #include <cstdint>
 

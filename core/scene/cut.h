@@ -4,9 +4,8 @@
 // per mm of wound, for how long, and how fast the flow clots. A stroke's cuts share its wound: the
 // haptic loop's cuts each stand for the path between them, so the flow follows the wound's length,
 // not how finely it is cut. What a scenario's [[cut]] leaves out comes from the scene's [spread]
-// and [particles] defaults (Scene::cut_at).
-#include "core/effects/pulse/pulse_params.h"
-#include "core/runtime/params.h"
+// and [particles] defaults (cut_at, core/effects/cuts.h); how it bleeds over time is
+// core/bleeding/.
 
 namespace bleedsim {
 
@@ -16,25 +15,13 @@ struct Cut {
   double start_s = 0.0;
   double radius_mm = 0.0;
   double growth_per_s = 0.0;
-  double wound_mm = 1.0;              // the length of wound it stands for
+  double wound_mm = 1.0;               // the length of wound it stands for
   double flow_mm3_per_s_per_mm = 0.0;  // blood per second per mm of wound, as it starts
-  double bleed_s = 0.0;               // how long it bleeds
-  double clot_s = 0.0;                // the flow falls as exp(−t/clot_s); 0: it does not
-  bool arterial = false;              // with [pulse]: its flow and exit speed follow the heartbeat
-  double wound_angle_deg = 0.0;       // with [vessels]: the wound's direction, centred on (x, y)
-  double vessel_density = 1.0;        // the mean vessel density along its wound (1 without [vessels])
+  double bleed_s = 0.0;                // how long it bleeds
+  double clot_s = 0.0;                 // the flow falls as exp(−t/clot_s); 0: it does not
+  bool arterial = false;               // with [pulse]: its flow and exit speed follow the heartbeat
+  double wound_angle_deg = 0.0;        // with [vessels]: the wound's direction, centred on (x, y)
+  double vessel_density = 1.0;         // the mean vessel density along its wound (1 without [vessels])
 };
-
-// The blood a cut's wound has given by time t (mm³): flow × wound × vessel density over the part of
-// [start, start + bleed] before t, falling as exp(−s/clot_s) when it clots, and, for an arterial
-// wound in a scene with a pulse, beating with it (pulse_waveform). `pulse` may be null.
-double cut_blood_mm3(const Cut& cut, double t_s, const PulseParams* pulse);
-
-// The speed of the blood leaving the wound at time t relative to the scene's emission velocity: a
-// fixed opening, so speed follows flow, w(t) for an arterial wound with a pulse, else 1.
-double cut_exit_speed_scale(const Cut& cut, double t_s, const PulseParams* pulse);
-
-// The [[cut]] tables; a cut's key in messages is "cut[i]".
-const ParamTable<Cut>& cut_table();
 
 }  // namespace bleedsim

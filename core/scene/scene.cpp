@@ -35,15 +35,17 @@ ParamProblem name_a_folder(Scene& scene, const Written& written, const Scene&) {
     return {"name", "is " + std::to_string(scene.name.size()) + " characters long; a folder's name may be at most " +
                         std::to_string(kMaxFileName) + " (it names the output folder)"};
   if (is_folder_name(scene.name)) return {};
-  return {"name", "'" + scene.name + "' must start with a letter or digit and hold only letters, digits, "
-                                     "'.', '_' and '-' (it names the output folder)"};
+  return {"name", "'" + scene.name +
+                      "' must start with a letter or digit and hold only letters, digits, "
+                      "'.', '_' and '-' (it names the output folder)"};
 }
 
 ParamProblem frames_countable(const Scene& scene, const Scene&) {
   const double frames = std::round(scene.duration_s * scene.frame_rate_hz);
   if (frames >= 1 && frames <= double(kMaxFrames)) return {};
-  return {"duration_s", "gives " + std::to_string(std::llround(frames)) + " frames at " + format_number(scene.frame_rate_hz) +
-                            " Hz; a run needs between 1 and " + std::to_string(kMaxFrames)};
+  return {"duration_s", "gives " + std::to_string(std::llround(frames)) + " frames at " +
+                            format_number(scene.frame_rate_hz) + " Hz; a run needs between 1 and " +
+                            std::to_string(kMaxFrames)};
 }
 
 }  // namespace
@@ -53,30 +55,14 @@ MemoryPart Domain::memory(Count bytes_per_pixel) const {
           pixels() * bytes_per_pixel};
 }
 
-Eigen::Vector3d Scene::device_gravity_mm_s2() const {
-  if (!particles) return Eigen::Vector3d::Zero();
-  return Eigen::Vector3d(particles->gravity_x_mm_s2, -particles->gravity_y_mm_s2, 0.0);
-}
-
 PixelGrid Domain::grid() const {
   return PixelGrid{width_px, height_px, static_cast<float>(width_mm / width_px),
                    static_cast<float>(height_mm / height_px)};
 }
 
-int Scene::frame_count() const {
-  return static_cast<int>(std::llround(duration_s * frame_rate_hz));
-}
+int Scene::frame_count() const { return static_cast<int>(std::llround(duration_s * frame_rate_hz)); }
 
-double Scene::frame_time_s(std::int64_t k) const {
-  return static_cast<double>(k + 1) / frame_rate_hz;
-}
-
-Cut Scene::cut_at(double x_mm, double y_mm, double start_s) const {
-  const SpreadParams size = spread.value_or(SpreadParams{});
-  const ParticleParams flow = particles.value_or(ParticleParams{});
-  return Cut{x_mm, y_mm, start_s, size.radius_mm, size.growth_per_s, 1.0, flow.flow_mm3_per_s_per_mm, flow.bleed_s,
-             flow.clot_s};
-}
+double Scene::frame_time_s(std::int64_t k) const { return static_cast<double>(k + 1) / frame_rate_hz; }
 
 std::int64_t Scene::haptic_ticks_through_frame(std::int64_t k) const {
   // (k + 1) · rate is exact; one division, correctly rounded, and floor: the same on every host.
@@ -89,69 +75,68 @@ const ParamTable<Scene>& scene_table() {
   static const ParamTable<P> table{
       "scene",
       "the panel in pixels and millimetres, the duration, the frame rate and the seed (required)",
-      {{"name", T::text, BLEEDSIM_MEMBER(P, name), "", {},
+      {{"name",
+        T::text,
+        BLEEDSIM_MEMBER(P, name),
+        "",
+        {},
         "names the output folder: a letter or digit, then letters, digits, '.', '_' and '-'",
         "the file's name without .toml, other characters replaced by '-'"},
-       {"width_px", T::integer, BLEEDSIM_MEMBER(P, domain.width_px), "px", {1, 65535}, "the panel's width in pixels",
-        nullptr, true},
-       {"height_px", T::integer, BLEEDSIM_MEMBER(P, domain.height_px), "px", {1, 65535},
-        "the panel's height in pixels", nullptr, true},
-       {"width_mm", T::number, BLEEDSIM_MEMBER(P, domain.width_mm), "mm", {0, 1e4, true},
-        "the panel's width on the tissue", nullptr, true},
-       {"height_mm", T::number, BLEEDSIM_MEMBER(P, domain.height_mm), "mm", {0, 1e4, true},
-        "the panel's height on the tissue", nullptr, true},
-       {"duration_s", T::number, BLEEDSIM_MEMBER(P, duration_s), "s", {0, 86400, true}, "how long the run lasts",
-        nullptr, true},
-       {"frame_rate_hz", T::number, BLEEDSIM_MEMBER(P, frame_rate_hz), "Hz", {0, 1000, true},
+       {"width_px",
+        T::integer,
+        BLEEDSIM_MEMBER(P, domain.width_px),
+        "px",
+        {1, 65535},
+        "the panel's width in pixels",
+        nullptr,
+        true},
+       {"height_px",
+        T::integer,
+        BLEEDSIM_MEMBER(P, domain.height_px),
+        "px",
+        {1, 65535},
+        "the panel's height in pixels",
+        nullptr,
+        true},
+       {"width_mm",
+        T::number,
+        BLEEDSIM_MEMBER(P, domain.width_mm),
+        "mm",
+        {0, 1e4, true},
+        "the panel's width on the tissue",
+        nullptr,
+        true},
+       {"height_mm",
+        T::number,
+        BLEEDSIM_MEMBER(P, domain.height_mm),
+        "mm",
+        {0, 1e4, true},
+        "the panel's height on the tissue",
+        nullptr,
+        true},
+       {"duration_s",
+        T::number,
+        BLEEDSIM_MEMBER(P, duration_s),
+        "s",
+        {0, 86400, true},
+        "how long the run lasts",
+        nullptr,
+        true},
+       {"frame_rate_hz",
+        T::number,
+        BLEEDSIM_MEMBER(P, frame_rate_hz),
+        "Hz",
+        {0, 1000, true},
         "frames per second; frame k shows t = (k + 1) / frame_rate_hz"},
-       {"seed", T::integer, BLEEDSIM_MEMBER(P, seed), "", {0, 9223372036854775807.0},
+       {"seed",
+        T::integer,
+        BLEEDSIM_MEMBER(P, seed),
+        "",
+        {0, 9223372036854775807.0},
         "the procedural tissue's pattern and the particles' jitter"}},
       {{"round(duration_s × frame_rate_hz) gives between 1 and 10,000,000 frames", frames_countable}},
       name_a_folder};
   return table;
-}
-
-ParamProblem scene_problem(const Scene& scene) {
-  if (ParamProblem problem = check_params(scene_table(), scene, scene)) return problem;
-  const Domain& d = scene.domain;
-  if (scene.tissue.width != d.width_px || scene.tissue.height != d.height_px ||
-      Count(scene.tissue.rgba.size()) != d.pixels() * 4)
-    return {"tissue", "must be a width_px × height_px RGBA8 image"};
-  for (std::size_t i = 0; i < scene.cuts.size(); ++i)
-    if (ParamProblem problem = check_params(cut_table(), scene.cuts[i], scene, "cut[" + std::to_string(i) + "]"))
-      return problem;
-  if (scene.spread)
-    if (ParamProblem problem = check_params(spread_table(), *scene.spread, scene)) return problem;
-  if (scene.particles)
-    if (ParamProblem problem = check_params(particle_table(), *scene.particles, scene)) return problem;
-  if (scene.blur)
-    if (ParamProblem problem = check_params(blur_table(), *scene.blur, scene)) return problem;
-  if (scene.trail)
-    if (ParamProblem problem = check_params(trail_table(), *scene.trail, scene)) return problem;
-  if (scene.optics)
-    if (ParamProblem problem = check_params(optics_table(), *scene.optics, scene)) return problem;
-  if (scene.pulse)
-    if (ParamProblem problem = check_params(pulse_table(), *scene.pulse, scene)) return problem;
-  if (scene.vessels) {
-    if (ParamProblem problem = check_params(vessel_table(), *scene.vessels, scene)) return problem;
-    if (Count(scene.vessel_density.size()) != d.pixels())
-      return {"vessels", "its density map must hold width_px × height_px values"};
-    for (const float v : scene.vessel_density)
-      if (!(v >= 0.0f && v <= 1.0f)) return {"vessels", "its density map's values must lie between 0 and 1"};
-  }
-  for (std::size_t i = 0; i < scene.tips.size(); ++i)
-    if (ParamProblem problem = check_params(tip_table(), scene.tips[i], scene, "tip[" + std::to_string(i) + "]"))
-      return problem;
-  if (ParamProblem problem = tip_path_problem(scene)) return problem;
-  if (scene.contact)
-    if (ParamProblem problem = check_params(contact_table(), *scene.contact, scene)) return problem;
-  if (scene.suction)
-    if (ParamProblem problem = check_params(suction_table(), *scene.suction, scene)) return problem;
-  if (scene.haptics)
-    if (ParamProblem problem = check_params(haptic_table(), *scene.haptics, scene)) return problem;
-  if (scene.trace && (!scene.haptics || scene.trace->samples.empty()))
-    return {"haptics", "a scene's trace needs [haptics] to replay it through, and samples"};
-  return {};
 }
 
 }  // namespace bleedsim

@@ -1,8 +1,10 @@
 #pragma once
 // Scene: everything read-only that a run needs (MuJoCo's "model"): the panel, time, the tissue,
-// the effects the scene calls for with their parameters, the cuts. Built by a host program in code,
-// or from a scenario file by core/io/scenario.h, which keeps the file's text, where each key was
-// written and the output settings beside the Scene, not in it. State holds everything that changes.
+// the instrument, the cuts, and the effects the scene calls for with their parameters. Built by a
+// host program in code, or from a scenario file by core/io/scenario.h, which keeps the file's text,
+// where each key was written and the output settings beside the Scene, not in it. State holds
+// everything that changes. The scene knows no effect by name: Scene::effects holds each one's
+// parameters by their type (core/effects/effect_list.h lists them).
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -10,23 +12,17 @@
 #include <string>
 #include <vector>
 
-#include "core/effects/blur/blur_params.h"
-#include "core/effects/suction/suction_params.h"
-#include "core/effects/blend/optics_params.h"
-#include "core/effects/particles/particle_params.h"
-#include "core/effects/pulse/pulse_params.h"
-#include "core/effects/spread/spread_params.h"
-#include "core/effects/trail/trail_params.h"
-#include "core/effects/vessels/vessel_params.h"
-#include "core/haptics/haptic_params.h"
-#include "core/scene/trace.h"
 #include "core/mesh/mesh_surface.h"
 #include "core/physics/pixel_grid.h"
 #include "core/runtime/count.h"
-#include "core/scene/cut.h"
 #include "core/runtime/image.h"
 #include "core/runtime/memory.h"
 #include "core/runtime/params.h"
+#include "core/runtime/type_map.h"
+#include "core/scene/cut.h"
+#include "core/scene/stylus.h"
+#include "core/scene/tool.h"
+#include "core/scene/trace.h"
 
 namespace bleedsim {
 
@@ -56,47 +52,31 @@ struct Scene {
   double duration_s = 1.0;
   double frame_rate_hz = 30.0;
   std::uint64_t seed = 0;
-  Image tissue;                        // domain-sized RGBA8
-  std::string tissue_source;           // file path, or "procedural"
+  Image tissue;               // domain-sized RGBA8
+  std::string tissue_source;  // file path, or "procedural"
   // The tissue's surface, placed in the device frame (mm): the texture is its uv map and the panel
   // its texture (docs/mesh.md). None: the flat panel.
   std::shared_ptr<const MeshSurface> mesh;
-  std::string mesh_source;             // the mesh's file, when there is one
-  std::optional<SpreadParams> spread;  // the effects the scene calls for
-  std::optional<ParticleParams> particles;
-  std::optional<BlurParams> blur;
-  std::optional<TrailParams> trail;
-  std::optional<OpticsParams> optics;  // the endoscope's headlight; without it, flat light
-  std::optional<PulseParams> pulse;    // a heartbeat for arterial wounds
-  std::optional<VesselParams> vessels;  // bleeding by vessel density, with its map:
-  std::vector<float> vessel_density;   // width_px × height_px, row by row, each 0 … 1
-  std::optional<SuctionParams> suction;  // the instrument's suction ...
-  std::optional<ContactParams> contact;  // ... and its tip's body in the blood
-  std::vector<TipPoint> tips;          // a scripted instrument's path, in a scene without [haptics]
-  std::optional<HapticParams> haptics;
-  std::optional<Trace> trace;          // replayed through the haptic loop, one sample per tick
-  std::vector<Cut> cuts;               // cuts the scene makes, in the order written (the order
-                                       // overlapping stains combine in)
+  std::string mesh_source;  // the mesh's file, when there is one
+  // The mucosa's vessels: a density map over the panel, width_px × height_px, row by row, each
+  // 0 … 1; read in a scene with [vessels].
+  std::vector<float> vessel_density;
+  std::vector<TipPoint> tips;           // a scripted instrument's path, in a scene without [haptics]
+  std::optional<HapticParams> haptics;  // the stylus
+  std::optional<Trace> trace;           // replayed through the haptic loop, one sample per tick
+  std::vector<Cut> cuts;                // cuts the scene makes, in the order written (the order
+                                        // overlapping stains combine in)
+  TypeMap effects;                      // the effects the scene calls for: each one's parameters
 
   int frame_count() const;
   // Frame k shows the state at the end of its frame period: t = (k + 1) / frame_rate.
   double frame_time_s(std::int64_t k) const;
-  // A cut at (x, y) starting at t with the scene's spread and particle defaults.
-  Cut cut_at(double x_mm, double y_mm, double start_s) const;
   // Haptic ticks (1 kHz, tick n at n ms) at or before the end of frame k: ticks 0 .. n_k − 1 have
   // run when frame k is computed. From integer counts, so no clock drifts from another.
   std::int64_t haptic_ticks_through_frame(std::int64_t k) const;
-  // Gravity in the device frame (mm/s²), for a tissue mesh: the particles' gravity_mm_s2 means the
-  // same on a mesh as on the flat panel, which faces the user: x right, y down the panel (the
-  // device's −y). Zero without particles.
-  Eigen::Vector3d device_gravity_mm_s2() const;
 };
 
 // The [scene] table: the panel, time and seed.
 const ParamTable<Scene>& scene_table();
-
-// The first problem of a scene built in code or read from a file, against every table it holds:
-// the scene's own, each cut's, each effect's; the tissue's size; a trace without [haptics].
-ParamProblem scene_problem(const Scene& scene);
 
 }  // namespace bleedsim

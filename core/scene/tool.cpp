@@ -2,14 +2,12 @@
 
 #include <algorithm>
 
-#include "core/effects/suction/suction_params.h"
-
 namespace bleedsim {
 
 std::optional<ToolSample> tool_at(const std::vector<ToolSample>& samples, double t_s, bool hold) {
   // The first sample later than t; the one before it is at or before t.
-  const auto after = std::upper_bound(samples.begin(), samples.end(), t_s,
-                                      [](double t, const ToolSample& s) { return t < s.t_s; });
+  const auto after =
+      std::upper_bound(samples.begin(), samples.end(), t_s, [](double t, const ToolSample& s) { return t < s.t_s; });
   if (after == samples.begin()) return std::nullopt;
   ToolSample at = *(after - 1);
   if (after == samples.end()) {
@@ -25,7 +23,7 @@ std::optional<ToolSample> tool_at(const std::vector<ToolSample>& samples, double
 
 std::vector<ToolSample> scripted_tool(const std::vector<TipPoint>& path) {
   std::vector<ToolSample> samples;
-  for (const TipPoint& p : path) samples.push_back({p.t_s, p.x_mm, p.y_mm, true, true});
+  for (const TipPoint& p : path) samples.push_back({p.t_s, p.x_mm, p.y_mm, true, kEveryButton});
   return samples;
 }
 

@@ -5,17 +5,19 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "core/runtime/memory.h"
+#include "core/effects/cuts.h"
+#include "core/effects/effect_list.h"
 #include "core/haptics/trace_replay.h"
-#include "core/bleeding/vessel_density.h"
+#include "core/runtime/memory.h"
+#include "core/simulation/scene_check.h"
 
 namespace bleedsim {
 namespace {
 
 // The fields must fit where the backend computes, and a host copy of them must fit for reading
 // frames out. Checked before anything is allocated, so a too-large scene fails at once.
-void check_fits(const Scene& scene, const Backend& backend) {
-  const MemoryParts on_backend = Pipeline::memory(scene);
+void check_fits(const Scene& scene, const Resolved& resolved, const Backend& backend) {
+  const MemoryParts on_backend = Pipeline::memory(scene, resolved);
   if (backend.kind() == BackendKind::cpu) {
     require_memory(times(on_backend, 2), available_host_memory(), "host");
   } else {
@@ -25,10 +27,9 @@ void check_fits(const Scene& scene, const Backend& backend) {
 }
 
 // The stylus as the instrument: its tip where the tick found it over the panel, in contact when it
-// touches the tissue, its suction on while it does with a suction button held.
-ToolSample stylus_sample(const Scene& scene, const HapticTick& tick) {
-  const bool suction = scene.suction && tick.contact && (tick.buttons & scene.suction->buttons) != 0;
-  return {tick.t_s, tick.panel_mm.x(), tick.panel_mm.y(), tick.contact, suction};
+// touches the tissue, with the buttons the tick found held.
+ToolSample stylus_sample(const HapticTick& tick) {
+  return {tick.t_s, tick.panel_mm.x(), tick.panel_mm.y(), tick.contact, tick.buttons};
 }
 
 }  // namespace
@@ -38,18 +39,18 @@ Simulation::Simulation(Scene scene, const BackendChoice& choice) : scene_(std::m
   SelectedBackend selected = select_backend(choice);
   backend_ = std::move(selected.backend);
   backend_reason_ = std::move(selected.why);
-  check_fits(scene_, *backend_);
-  for (const Cut& cut : scene_.cuts) state_.cuts.push_back(with_vessels(scene_, cut));
-  pipeline_ = std::make_unique<Pipeline>(scene_, state_, *backend_);
+  resolved_ = resolve(scene_);
+  check_fits(scene_, resolved_, *backend_);
+  for (const Cut& cut : scene_.cuts) state_.cuts.push_back(cut_as_made(scene_, cut));
+  pipeline_ = std::make_unique<Pipeline>(scene_, resolved_, state_, *backend_);
   if (scene_.trace) haptics_.emplace(scene_);
 }
 
 Simulation::~Simulation() = default;
 
 void Simulation::add_cut(const Cut& cut) {
-  if (const ParamProblem problem = check_params(cut_table(), cut, scene_))
-    throw std::invalid_argument(problem.text());
-  state_.cuts.push_back(with_vessels(scene_, cut));
+  if (const ParamProblem problem = check_params(cut_table(), cut, scene_)) throw std::invalid_argument(problem.text());
+  state_.cuts.push_back(cut_as_made(scene_, cut));
 }
 
 void Simulation::add_stylus_sample(const ToolSample& sample) {
@@ -72,8 +73,8 @@ void Simulation::replay_haptic_ticks() {
   while (haptics_->ticks_done() < end) {
     const Clock::time_point start = Clock::now();
     HapticStep step = haptics_->tick(trace_sample_at_tick(*scene_.trace, haptics_->ticks_done()));
-    if (step.cut) state_.cuts.push_back(with_vessels(scene_, *step.cut));
-    if (scene_.suction || scene_.contact) state_.stylus.push_back(stylus_sample(scene_, step.record));
+    if (step.cut) state_.cuts.push_back(cut_as_made(scene_, *step.cut));
+    state_.stylus.push_back(stylus_sample(step.record));
     tick_seconds_.push_back(std::chrono::duration<double>(Clock::now() - start).count());
     frame_ticks_.push_back(step.record);
   }
@@ -85,8 +86,8 @@ void Simulation::step() {
   // The stylus's samples up to this frame's end are done with but the last, where it stays.
   const double end_s = scene_.frame_time_s(state_.frames_done);
   std::vector<ToolSample>& stylus = state_.stylus;
-  const auto after = std::upper_bound(stylus.begin(), stylus.end(), end_s,
-                                      [](double t, const ToolSample& s) { return t < s.t_s; });
+  const auto after =
+      std::upper_bound(stylus.begin(), stylus.end(), end_s, [](double t, const ToolSample& s) { return t < s.t_s; });
   if (after - stylus.begin() > 1) stylus.erase(stylus.begin(), after - 1);
   ++state_.frames_done;
 }

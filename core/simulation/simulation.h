@@ -9,9 +9,10 @@
 #include <string>
 #include <vector>
 
-#include "core/runtime/backend.h"
-#include "core/haptics/haptics.h"
 #include "core/effects/pipeline.h"
+#include "core/effects/resolved.h"
+#include "core/haptics/haptics.h"
+#include "core/runtime/backend.h"
 #include "core/scene/scene.h"
 #include "core/scene/state.h"
 
@@ -34,6 +35,8 @@ class Simulation {
   Simulation& operator=(const Simulation&) = delete;
 
   const Scene& scene() const { return scene_; }
+  // What its effects resolved to, once (core/effects/resolved.h).
+  const Resolved& resolved() const { return resolved_; }
   const Backend& backend() const { return *backend_; }
   // Why this backend ("auto: CUDA device found", "auto: no CUDA device (...)").
   const std::string& backend_reason() const { return backend_reason_; }
@@ -45,8 +48,8 @@ class Simulation {
   const std::vector<Cut>& cuts() const { return state_.cuts; }
 
   // A sample of the host's stylus, for a scene with [haptics] and no trace: where its tip is on the
-  // panel, whether it touches the tissue and whether its suction is on. The instrument ([suction],
-  // [contact]) follows the samples (in straight lines between them, staying at the last); give
+  // panel, whether it touches the tissue and which grip buttons are held (the suction is on in
+  // contact with one of [suction].buttons). The instrument ([suction], [contact]) follows the samples (in straight lines between them, staying at the last); give
   // them up to the end of each frame before stepping it. Throws std::invalid_argument for a scene
   // whose stylus is not the host's, a sample not later than the one before, or a value that is not
   // finite.
@@ -79,6 +82,7 @@ class Simulation {
 
  private:
   Scene scene_;
+  Resolved resolved_;
   std::unique_ptr<Backend> backend_;  // declared before state_ and pipeline_: outlives their memory
   std::string backend_reason_;
   State state_;

@@ -8,10 +8,12 @@
 
 #include "core/effects/blend/blend_stage.h"
 #include "core/effects/particles/particle_model.h"
+#include "core/effects/particles/particle_params.h"
 #include "core/io/scenario.h"
 #include "core/runtime/hash.h"
 #include "core/runtime/input_error.h"
 #include "core/runtime/message_text.h"
+#include "core/simulation/scene_check.h"
 #include "core/simulation/simulation.h"
 #include "core/study/job_record.h"
 #include "core/study/study_metrics.h"
@@ -129,7 +131,7 @@ void choose_substep_levels(const Scene& base, std::vector<StudyLadder>& ladders)
   for (StudyLadder& ladder : ladders) {
     if (!ladder.values.empty()) continue;
     Scene at_fewest = base;
-    at_fewest.particles->substeps = fewest_substeps(base, ladders);
+    at_fewest.effects.get<ParticleParams>().substeps = fewest_substeps(base, ladders);
     ladder.values = coarse_to_fine(*ladder.knob, ladder.knob->default_ladder(at_fewest));
   }
 }
@@ -197,8 +199,8 @@ std::vector<double> setting_costs(const Study& study) {
   for (std::size_t i = 0; i < study.settings().size(); ++i) {
     const Scene s = study.scene_for(i, 0);
     double per_frame = double(s.domain.width_px) * s.domain.height_px;
-    if (s.particles)
-      per_frame += double(particle_mechanics(*s.particles, s.domain, s.frame_rate_hz).substeps) * s.particles->capacity;
+    if (s.effects.has<ParticleParams>())
+      per_frame += double(resolve_particles(s).mechanics.substeps) * s.effects.get<ParticleParams>().capacity;
     costs.push_back(per_frame * study.frames_per_run());
   }
   return costs;
@@ -312,8 +314,8 @@ std::vector<std::uint8_t> Study::run_job(std::size_t j, BackendKind backend, int
   }
   r.device = sim->backend().device_name();
   const Scene& s = sim->scene();
-  const double gravity_x = s.particles ? s.particles->gravity_x_mm_s2 : 0.0;
-  const double gravity_y = s.particles ? s.particles->gravity_y_mm_s2 : 1.0;
+  const double gravity_x = s.effects.has<ParticleParams>() ? s.effects.get<ParticleParams>().gravity_x_mm_s2 : 0.0;
+  const double gravity_y = s.effects.has<ParticleParams>() ? s.effects.get<ParticleParams>().gravity_y_mm_s2 : 1.0;
   r.grid_width = grid_w_;
   r.grid_height = grid_h_;
   r.snapshot_frames.assign(snapshots_.begin(), snapshots_.end());

@@ -5,10 +5,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 
+#include "core/effects/blur/blur_params.h"
 #include "core/effects/particles/particle_model.h"
+#include "core/effects/particles/particle_params.h"
+#include "core/effects/vessels/vessel_params.h"
 #include "core/io/scenario.h"
 #include "core/io/tissue_png.h"
+#include "core/physics/blur.h"
 #include "core/runtime/message_text.h"
 #include "core/runtime/tissue.h"
 #include "core/study/ensemble_stats.h"
@@ -17,8 +22,8 @@
 namespace bleedsim {
 namespace {
 
-bool has_particles(const Scene& s) { return s.particles.has_value(); }
-bool has_blur(const Scene& s) { return s.blur.has_value(); }
+bool has_particles(const Scene& s) { return s.effects.has<ParticleParams>(); }
+bool has_blur(const Scene& s) { return s.effects.has<BlurParams>(); }
 bool always(const Scene&) { return true; }
 
 // `base` times each factor, rounded to a whole number of at least 1, without repeats, ascending.
@@ -31,18 +36,16 @@ std::vector<double> whole_multiples(double base, std::initializer_list<double> f
 }
 
 // The sub-steps the scene runs with: its own, or the fewest its contact allows.
-double resolved_substeps(const Scene& s) {
-  return double(particle_mechanics(*s.particles, s.domain, s.frame_rate_hz).substeps);
-}
+double resolved_substeps(const Scene& s) { return double(resolve_particles(s).mechanics.substeps); }
 
 void set_compression(Scene& s, double e) {
   pin_particle_model(s);
-  s.particles->compression = e;
+  s.effects.get<ParticleParams>().compression = e;
 }
 
 void set_substeps(Scene& s, double n) {
   pin_particle_model(s);
-  s.particles->substeps = int(n);
+  s.effects.get<ParticleParams>().substeps = int(n);
 }
 
 // Particles f times the diameter carry f² the blood each, f⁻² as many for the same flow of blood:
@@ -51,7 +54,7 @@ void set_substeps(Scene& s, double n) {
 // means at another size), and the time step stays: a size whose contact it cannot hold is refused.
 void set_particle_size(Scene& s, double f) {
   pin_particle_model(s);
-  ParticleParams& p = *s.particles;
+  ParticleParams& p = s.effects.get<ParticleParams>();
   p.diameter_mm *= f;
   if (p.cell_mm > 0) p.cell_mm *= f;
   if (p.splat_radius_mm > 0) p.splat_radius_mm *= f;
@@ -61,9 +64,9 @@ void set_particle_size(Scene& s, double f) {
 
 // The blur's taps and width in downsampled pixels, scaled so its width on the panel stays.
 void scale_blur_pixels(Scene& s, double factor) {
-  if (!s.blur) return;
-  s.blur->radius_px = int(std::round(s.blur->radius_px * factor));
-  s.blur->sigma_px *= factor;
+  if (!s.effects.has<BlurParams>()) return;
+  s.effects.get<BlurParams>().radius_px = int(std::round(s.effects.get<BlurParams>().radius_px * factor));
+  s.effects.get<BlurParams>().sigma_px *= factor;
 }
 
 // The panel's pixels; the tissue and the vessel map are the scene's, drawn or read again at the new
@@ -76,8 +79,8 @@ void set_resolution(Scene& s, double f) {
   scale_blur_pixels(s, f);
   s.tissue = s.tissue_source == "procedural" ? procedural_tissue(w, h, s.seed)
                                              : load_tissue_png(s.tissue_source, w, h, {}, "tissue.texture");
-  if (!s.vessels) return;
-  if (s.vessels->map == "procedural") {
+  if (!s.effects.has<VesselParams>()) return;
+  if (s.effects.get<VesselParams>().map == "procedural") {
     s.vessel_density = procedural_vessel_density(w, h, s.seed);
   } else {
     const std::vector<double> resampled =
@@ -87,8 +90,8 @@ void set_resolution(Scene& s, double f) {
 }
 
 void set_blur_downsample(Scene& s, double d) {
-  scale_blur_pixels(s, double(s.blur->downsample) / d);
-  s.blur->downsample = int(d);
+  scale_blur_pixels(s, double(s.effects.get<BlurParams>().downsample) / d);
+  s.effects.get<BlurParams>().downsample = int(d);
 }
 
 }  // namespace
@@ -96,16 +99,16 @@ void set_blur_downsample(Scene& s, double d) {
 int resolution_pixels(int pixels, double factor) { return std::max(1, int(std::round(pixels * factor))); }
 
 int fewest_stable_substeps(const Scene& scene) {
-  ParticleParams p = *scene.particles;
+  ParticleParams p = scene.effects.get<ParticleParams>();
   p.substeps = 0;
-  return particle_mechanics(p, scene.domain, scene.frame_rate_hz).substeps;
+  return resolve_particles(p, scene).mechanics.substeps;
 }
 
 void pin_particle_model(Scene& s) {
-  if (!s.particles) return;
-  const ParticleMechanics m = particle_mechanics(*s.particles, s.domain, s.frame_rate_hz);
-  s.particles->substeps = m.substeps;
-  s.particles->design_depth_mm = m.depth_mm;
+  if (!s.effects.has<ParticleParams>()) return;
+  const ParticleMechanics m = resolve_particles(s).mechanics;
+  s.effects.get<ParticleParams>().substeps = m.substeps;
+  s.effects.get<ParticleParams>().design_depth_mm = m.depth_mm;
 }
 
 const std::vector<Knob>& knobs() {
@@ -116,44 +119,55 @@ const std::vector<Knob>& knobs() {
        "the time step, the particles and the pile the contact is made for (a contact too stiff for the "
        "time step is refused)",
        false, false, kNaN, "particles.compression", has_particles,
-       [](const Scene& s) { return s.particles->compression; },
+       [](const Scene& s) { return s.effects.get<ParticleParams>().compression; },
        [](const Scene& s) {
-         const double e = s.particles->compression;
+         const double e = s.effects.get<ParticleParams>().compression;
          return std::vector<double>{4 * e, 2 * e, e};
        },
        set_compression},
-      {"substeps",
-       "physics steps per frame (the time step): more cost more and refine the time step",
-       "the contact, the particles and everything else",
-       true, true, kNaN, "particles.substeps", has_particles, resolved_substeps,
-       [](const Scene& s) { return whole_multiples(resolved_substeps(s), {1, 2}); }, set_substeps},
+      {"substeps", "physics steps per frame (the time step): more cost more and refine the time step",
+       "the contact, the particles and everything else", true, true, kNaN, "particles.substeps", has_particles,
+       resolved_substeps,
+       [](const Scene& s) {
+         return whole_multiples(resolved_substeps(s), {1, 2});
+       },
+       set_substeps},
       {"particle_size",
        "the particles' diameter, as a factor: larger particles are fewer and cheaper, and sample the "
        "flow and the film more coarsely",
        "the blood (its volume, flow and film), the compression, the surface tension and grip per unit "
        "length, the time step (a size whose contact it cannot hold is refused)",
        false, false, kNaN, nullptr, has_particles, [](const Scene&) { return 1.0; },
-       [](const Scene&) { return std::vector<double>{4.0, 2.0, 1.0}; }, set_particle_size},
-      {"blur_radius",
-       "the blur's taps either side: fewer cost less, and cut the Gaussian's tails off",
-       "the Gaussian's width and the downsampling",
-       true, true, kNaN, "blur.radius_px", has_blur, [](const Scene& s) { return double(s.blur->radius_px); },
-       [](const Scene& s) { return whole_multiples(s.blur->radius_px, {0.25, 0.5, 1}); },
-       [](Scene& s, double r) { s.blur->radius_px = int(r); }},
+       [](const Scene&) {
+         return std::vector<double>{4.0, 2.0, 1.0};
+       },
+       set_particle_size},
+      {"blur_radius", "the blur's taps either side: fewer cost less, and cut the Gaussian's tails off",
+       "the Gaussian's width and the downsampling", true, true, kNaN, "blur.radius_px", has_blur,
+       [](const Scene& s) { return double(s.effects.get<BlurParams>().radius_px); },
+       [](const Scene& s) {
+         return whole_multiples(s.effects.get<BlurParams>().radius_px, {0.25, 0.5, 1});
+       },
+       [](Scene& s, double r) { s.effects.get<BlurParams>().radius_px = int(r); }},
       {"blur_downsample",
        "the blur's downsampling (1, 2 or 4): more is cheaper, and coarsens the film's edges (1: none, "
        "nothing to refine)",
        "the blur's width on the panel and where its taps cut the Gaussian (taps and width in "
        "downsampled pixels scale with it)",
-       false, true, 1.0, "blur.downsample", has_blur, [](const Scene& s) { return double(s.blur->downsample); },
-       [](const Scene&) { return std::vector<double>{4, 2, 1}; }, set_blur_downsample},
+       false, true, 1.0, "blur.downsample", has_blur,
+       [](const Scene& s) { return double(s.effects.get<BlurParams>().downsample); },
+       [](const Scene&) { return std::vector<double>(std::rbegin(kBlurFactors), std::rend(kBlurFactors)); },
+       set_blur_downsample},
       {"resolution",
        "the panel's pixels, as a factor on width and height (the spread texture, the film, the frame): "
        "fewer are cheaper and blur every edge",
        "the panel in mm, the particles, the blur's width on the panel, the tissue and vessels (drawn "
        "again at the new size)",
        true, false, kNaN, nullptr, always, [](const Scene&) { return 1.0; },
-       [](const Scene&) { return std::vector<double>{0.25, 0.5, 1.0}; }, set_resolution},
+       [](const Scene&) {
+         return std::vector<double>{0.25, 0.5, 1.0};
+       },
+       set_resolution},
   };
   return table;
 }

@@ -5,8 +5,10 @@
 #include <cstring>
 #include <vector>
 
-#include "core/simulation/simulation.h"
+#include "core/effects/cuts.h"
+#include "core/effects/spread/spread_params.h"
 #include "core/runtime/tissue.h"
+#include "core/simulation/simulation.h"
 
 int main() {
   using namespace bleedsim;
@@ -19,7 +21,7 @@ int main() {
   scene.duration_s = 2.0;
   scene.tissue = procedural_tissue(320, 240, 42);
   scene.tissue_source = "procedural";
-  scene.spread = SpreadParams{5.0, 0.8};  // the scene calls for the radial spread
+  scene.effects.set(SpreadParams{5.0, 0.8});  // the scene calls for the radial spread
 
   Simulation sim(scene);  // auto: CUDA when a device is present, else the CPU reference
   std::printf("backend %s: %s (%s)\n", to_string(sim.backend().kind()),
@@ -28,7 +30,7 @@ int main() {
   std::vector<std::uint8_t> rgba(sim.field("frame").field->bytes());
   for (int frame = 0; frame < sim.scene().frame_count(); ++frame) {
     // The host's tool cut the tissue at (16, 12) mm a third of a second in: bleed from now on.
-    if (frame == 10) sim.add_cut(sim.scene().cut_at(16.0, 12.0, sim.time_s()));
+    if (frame == 10) sim.add_cut(cut_at(sim.scene(), 16.0, 12.0, sim.time_s()));
     sim.step();
     // In place: a device pointer on CUDA (hand it to the renderer), a host pointer on the CPU.
     const FieldView in_place = sim.field("frame");

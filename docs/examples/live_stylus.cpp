@@ -11,9 +11,10 @@
 #include <thread>
 #include <vector>
 
+#include "core/effects/spread/spread_params.h"
 #include "core/haptics/haptics.h"
-#include "core/simulation/simulation.h"
 #include "core/runtime/tissue.h"
+#include "core/simulation/simulation.h"
 
 namespace {
 
@@ -40,7 +41,7 @@ int main() {
   scene.duration_s = 1.5;
   scene.tissue = procedural_tissue(320, 240, 7);
   scene.tissue_source = "procedural";
-  scene.spread = SpreadParams{2.0, 2.0};
+  scene.effects.set(SpreadParams{2.0, 2.0});
   HapticParams stylus;  // the defaults: surface at z = 120 mm, k = 500 N/m, a cut every 1 mm
   stylus.origin_x_mm = 16.0;
   stylus.origin_y_mm = 12.0;

@@ -13,9 +13,14 @@
 #include <string>
 #include <vector>
 
+#include "core/bleeding/heartbeat.h"
+#include "core/effects/contact/contact_params.h"
 #include "core/effects/particles/particle_model.h"
+#include "core/effects/particles/particle_params.h"
+#include "core/effects/pulse/pulse_params.h"
+#include "core/effects/suction/suction_params.h"
+#include "core/effects/vessels/vessel_params.h"
 #include "core/simulation/simulation.h"
-#include "core/bleeding/vessel_density.h"
 #include "tests/effects/hard_case_check.h"
 
 namespace bleedsim {
@@ -29,7 +34,7 @@ using test::RunSummary;
 
 // Sub-steps done by the end of the frame that shows time t (frame k shows t = (k + 1) / rate).
 std::uint64_t steps_by(const Scene& scene, double t_s) {
-  const ParticleMechanics mech = particle_mechanics(*scene.particles, scene.domain, scene.frame_rate_hz);
+  const ParticleMechanics mech = resolve_particles(scene.effects.get<ParticleParams>(), scene).mechanics;
   return std::uint64_t(std::llround(t_s * scene.frame_rate_hz)) * std::uint64_t(mech.substeps);
 }
 
@@ -48,14 +53,14 @@ struct Quota {
 
 TEST(BleedingHardCases, SuctionFlood) {
   Scene scene = load_hard("suction-flood");
-  ASSERT_TRUE(scene.suction);
+  ASSERT_TRUE(scene.effects.has<SuctionParams>());
   ASSERT_EQ(scene.cuts.size(), 1u);
   ASSERT_EQ(scene.tips.size(), 2u);
-  const ParticleParams& pp = *scene.particles;
+  const ParticleParams& pp = scene.effects.get<ParticleParams>();
   const Cut& cut = scene.cuts[0];
   const TipPoint on = scene.tips.front(), off = scene.tips.back();
-  const double volume = pp.particle_volume_mm3, steps_per_s = particle_steps_per_s(scene);
-  const Quota quota{scene.suction->max_flow_mm3_per_s / steps_per_s / volume};
+  const double volume = pp.particle_volume_mm3, steps_per_s = resolve_particles(scene).steps_per_s;
+  const Quota quota{scene.effects.get<SuctionParams>().max_flow_mm3_per_s / steps_per_s / volume};
   // The premises of the header's closed forms: a tip held still whose reach covers the panel, a
   // flood faster than the quota, more than one particle a step, a stop at a frame's end while the
   // tip is on, and particles that outlive the ring's turn (C/E) but not the quota's drain of a
@@ -64,16 +69,16 @@ TEST(BleedingHardCases, SuctionFlood) {
   ASSERT_EQ(on.y_mm, off.y_mm);
   for (const double cx : {0.0, scene.domain.width_mm})
     for (const double cy : {0.0, scene.domain.height_mm})
-      ASSERT_LE(std::hypot(cx - on.x_mm, cy - on.y_mm), scene.suction->radius_mm);
+      ASSERT_LE(std::hypot(cx - on.x_mm, cy - on.y_mm), scene.effects.get<SuctionParams>().radius_mm);
   const double flood_per_s = cut.wound_mm * cut.flow_mm3_per_s_per_mm / volume;
-  ASSERT_GT(flood_per_s, scene.suction->max_flow_mm3_per_s / volume);
+  ASSERT_GT(flood_per_s, scene.effects.get<SuctionParams>().max_flow_mm3_per_s / volume);
   ASSERT_GT(quota.per_step, 1.0);  // several a step: nearest first decides which
   const double stop_s = cut.start_s + cut.bleed_s;
   ASSERT_EQ(stop_s * scene.frame_rate_hz, std::round(stop_s * scene.frame_rate_hz));
   ASSERT_GT(stop_s, on.t_s);
   ASSERT_LT(stop_s, off.t_s);
   ASSERT_GT(pp.lifetime_s, pp.capacity / flood_per_s);
-  ASSERT_LT(pp.lifetime_s, pp.capacity / (scene.suction->max_flow_mm3_per_s / volume));
+  ASSERT_LT(pp.lifetime_s, pp.capacity / (scene.effects.get<SuctionParams>().max_flow_mm3_per_s / volume));
 
   // The sub-steps with the suction on among the first n: those whose end, j / steps_per_s (as the
   // particle stage computes it), lies on the tip's path, [on.t_s, off.t_s].
@@ -137,10 +142,10 @@ TEST(BleedingHardCases, SuctionFlood) {
 // drag takes the speed out) and to the resting bound at the end.
 TEST(BleedingHardCases, ContactSweep) {
   Scene scene = load_hard("contact-sweep");
-  ASSERT_TRUE(scene.contact);
-  ASSERT_FALSE(scene.suction);
-  const ParticleParams& pp = *scene.particles;
-  const double step_s = 1.0 / particle_steps_per_s(scene), d = pp.diameter_mm;
+  ASSERT_TRUE(scene.effects.has<ContactParams>());
+  ASSERT_FALSE(scene.effects.has<SuctionParams>());
+  const ParticleParams& pp = scene.effects.get<ParticleParams>();
+  const double step_s = 1.0 / resolve_particles(scene).steps_per_s, d = pp.diameter_mm;
   // Every leg of the path moves the tip more than a diameter a sub-step (and less than its body's
   // radius, so what it lands on is pushed ahead of it, not jumped over).
   double slowest = 1e300, fastest = 0.0;
@@ -159,7 +164,7 @@ TEST(BleedingHardCases, ContactSweep) {
   Expect expect;
   expect.overlap_unbounded_until_s = lifted_s + 2.0 / pp.drag_per_s;
   // How much blood the tip had about it: the most live centres within a diameter of its body.
-  const ParticleModel m = make_particle_model(scene);
+  const ParticleModel m = resolve_particles(scene).model;
   const float body = test::tip_body_mm(scene);
   int most_near = 0;
   std::uint64_t emitted_before = 0;
@@ -207,9 +212,9 @@ double fastest_spurt(const PulseParams& pulse, const ParticleParams& p, double s
 
 TEST(BleedingHardCases, PulseSpurt) {
   Scene scene = load_hard("pulse-spurt");
-  ASSERT_TRUE(scene.pulse);
-  const PulseParams pulse = *scene.pulse;
-  const ParticleParams pp = *scene.particles;
+  ASSERT_TRUE(scene.effects.has<PulseParams>());
+  const PulseParams pulse = scene.effects.get<PulseParams>();
+  const ParticleParams pp = scene.effects.get<ParticleParams>();
   const std::vector<Cut> cuts = scene.cuts;
   // The premises: the extremes the rules allow, and the spurt at its limit to the last bit.
   EXPECT_EQ(pulse.heart_rate_per_min, 300.0);
@@ -234,7 +239,7 @@ TEST(BleedingHardCases, PulseSpurt) {
   const double volume = pp.particle_volume_mm3, n_cuts = double(cuts.size());
   // A float32 emission and speed limit are each a few roundings from the exact: 2⁻²⁰ of the limit.
   const double speed_bound = pp.max_speed_mm_s * (1.0 + std::ldexp(1.0, -20));
-  const ParticleModel m = make_particle_model(scene);
+  const ParticleModel m = resolve_particles(scene).model;
   std::uint64_t before = 0;
   double fastest = 0.0, most_behind = 0.0;
   const auto each_frame = [&](const Particles& p) {
@@ -338,16 +343,16 @@ WoundMean wound_mean(const Scene& scene, const Cut& cut) {
 
 TEST(BleedingHardCases, VesselEdges) {
   Scene scene = load_hard("vessel-edges");
-  ASSERT_TRUE(scene.vessels && scene.pulse);
+  ASSERT_TRUE(scene.effects.has<VesselParams>() && scene.effects.has<PulseParams>());
   const Domain& d = scene.domain;
   // The map as read is the map described, pixel for pixel (no resampling: one PNG pixel a pixel).
   ASSERT_EQ(scene.vessel_density.size(), std::size_t(d.width_px) * d.height_px);
   for (int j = 0; j < d.height_px; ++j)
     for (int i = 0; i < d.width_px; ++i)
       ASSERT_EQ(scene.vessel_density[std::size_t(j) * d.width_px + i], float(edges_map(i, j))) << i << ", " << j;
-  const PulseParams pulse = *scene.pulse;
+  const PulseParams pulse = scene.effects.get<PulseParams>();
   ASSERT_EQ(pulse.arterial_density, 1.0);
-  const double volume = scene.particles->particle_volume_mm3;
+  const double volume = scene.effects.get<ParticleParams>().particle_volume_mm3;
   struct Expected {
     double low, high;  // the cut's particles: [N·ρ − 1 − E, N·ρ + E]
     double window_end_s;

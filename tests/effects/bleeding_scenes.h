@@ -6,10 +6,12 @@
 #include <string>
 #include <vector>
 
+#include "core/effects/cuts.h"
 #include "core/effects/particles/particle_accounting.h"
+#include "core/effects/particles/particle_params.h"
+#include "core/runtime/tissue.h"
 #include "core/scene/scene.h"
 #include "core/simulation/simulation.h"
-#include "core/runtime/tissue.h"
 #include "tests/runtime/field_values.h"
 
 namespace bleedsim::test {
@@ -24,11 +26,11 @@ inline Scene bleeding_scene(const std::string& name, const Domain& domain, doubl
   scene.domain = domain;
   scene.duration_s = duration_s;
   scene.tissue = procedural_tissue(domain.width_px, domain.height_px, 1);
-  scene.particles = ParticleParams{};
-  scene.particles->capacity = 4096;
-  scene.particles->lifetime_s = lifetime_s;
-  scene.particles->fade_s = fade_s;
-  scene.particles->design_depth_mm = 0.5;
+  scene.effects.set(ParticleParams{});
+  scene.effects.get<ParticleParams>().capacity = 4096;
+  scene.effects.get<ParticleParams>().lifetime_s = lifetime_s;
+  scene.effects.get<ParticleParams>().fade_s = fade_s;
+  scene.effects.get<ParticleParams>().design_depth_mm = 0.5;
   return scene;
 }
 
@@ -36,7 +38,7 @@ inline Scene bleeding_scene(const std::string& name, const Domain& domain, doubl
 // for the test to shape further.
 inline Cut& add_cut(Scene& scene, double x_mm, double y_mm, double start_s, double flow_mm3_per_s_per_mm,
                     double bleed_s) {
-  Cut cut = scene.cut_at(x_mm, y_mm, start_s);
+  Cut cut = cut_at(scene, x_mm, y_mm, start_s);
   cut.flow_mm3_per_s_per_mm = flow_mm3_per_s_per_mm;
   cut.bleed_s = bleed_s;
   scene.cuts.push_back(cut);

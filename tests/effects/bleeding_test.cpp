@@ -8,9 +8,14 @@
 #include <cstdint>
 #include <vector>
 
-#include "core/simulation/simulation.h"
+#include "core/bleeding/cut_flow.h"
+#include "core/bleeding/heartbeat.h"
+#include "core/effects/cuts.h"
+#include "core/effects/particles/particle_params.h"
+#include "core/effects/pulse/pulse_params.h"
+#include "core/effects/vessels/vessel_params.h"
 #include "core/runtime/tissue.h"
-#include "core/bleeding/vessel_density.h"
+#include "core/simulation/simulation.h"
 #include "tests/effects/bleeding_scenes.h"
 
 namespace bleedsim {
@@ -23,7 +28,7 @@ constexpr double kPi = 3.14159265358979323846;
 // with particles that live a few steps (only their count is asked, so few need be alive) and cuts that bleed for bleed_s.
 Scene vessel_scene(double (*density)(double y_mm), double duration_s) {
   Scene scene = test::bleeding_scene("vessels", Domain{200, 160, 40.0, 32.0}, duration_s, 0.05, 0.01);
-  scene.vessels = VesselParams{};
+  scene.effects.set(VesselParams{});
   for (int j = 0; j < 160; ++j)
     for (int i = 0; i < 200; ++i) scene.vessel_density.push_back(float(density((j + 0.5) * 0.2)));
   return scene;
@@ -55,7 +60,8 @@ TEST(Vessels, EachCutBleedsTheMapsIntegralAlongItsWound) {
     const std::uint64_t bled = emitted(sim) - before;
     before = emitted(sim);
     const double integral_mm = wounds[k].length * gradient(wounds[k].y);  // ∫ρ ds along the wound
-    const double expected = std::floor(10.0 * integral_mm * 0.5 / scene.particles->particle_volume_mm3);
+    const double expected =
+        std::floor(10.0 * integral_mm * 0.5 / scene.effects.get<ParticleParams>().particle_volume_mm3);
     EXPECT_NEAR(double(bled), expected, 1.0) << "wound " << k;
     EXPECT_NEAR(double(bled), expected, 0.01 * expected) << "wound " << k;
   }
@@ -66,16 +72,16 @@ TEST(Vessels, EachCutBleedsTheMapsIntegralAlongItsWound) {
 // flow, and a vertical one from 14 to 18 mm has mean density (1.9 + 0.2/2) / 4 = 0.5 exactly.
 TEST(Vessels, AWoundWithoutVesselsDoesNotBleed) {
   Scene scene = vessel_scene([](double y) { return y < 16.0 ? 0.0 : 1.0; }, 1.0);
-  const Cut above = with_vessels(scene, scene.cut_at(20, 10, 0));
+  const Cut above = with_vessels(scene, cut_at(scene, 20, 10, 0));
   EXPECT_EQ(above.vessel_density, 0.0);
   EXPECT_EQ(cut_blood_mm3(above, 1.0, nullptr), 0.0);
-  Cut across = scene.cut_at(20, 16, 0);
+  Cut across = cut_at(scene, 20, 16, 0);
   across.wound_mm = 4.0;
   across.wound_angle_deg = 90.0;
   EXPECT_NEAR(with_vessels(scene, across).vessel_density, 0.5, 1e-12);
-  EXPECT_EQ(with_vessels(scene, scene.cut_at(20, 20, 0)).vessel_density, 1.0);
+  EXPECT_EQ(with_vessels(scene, cut_at(scene, 20, 20, 0)).vessel_density, 1.0);
 
-  test::add_cut(scene, 20, 10, 0, 50.0, scene.particles->bleed_s);
+  test::add_cut(scene, 20, 10, 0, 50.0, scene.effects.get<ParticleParams>().bleed_s);
   Simulation sim(scene, kCpu);
   while (sim.frames_done() < scene.frame_count()) sim.step();
   EXPECT_EQ(emitted(sim), 0u);
@@ -132,7 +138,7 @@ TEST(Pulse, TheClosedFormIsTheIntegralOfTheWaveform) {
 TEST(Pulse, AnArterialCutBeatsAtTheHeartRateAboutItsMeanFlow) {
   for (const bool arterial : {true, false}) {
     Scene scene = test::bleeding_scene("pulse", Domain{100, 80, 20.0, 16.0}, 20.0, 0.3, 0.1);
-    scene.pulse = PulseParams{};
+    scene.effects.set(PulseParams{});
     // 2 mm³/s over 1 mm of wound: 500 particles a second.
     test::add_cut(scene, 10, 4, 0, 2.0, 20.0).arterial = arterial;
     Simulation sim(scene, kCpu);
@@ -140,10 +146,11 @@ TEST(Pulse, AnArterialCutBeatsAtTheHeartRateAboutItsMeanFlow) {
     std::uint64_t before = 0;
     while (sim.frames_done() < scene.frame_count()) {
       sim.step();
-      per_frame.push_back(double(emitted(sim) - before) * scene.particles->particle_volume_mm3);
+      per_frame.push_back(double(emitted(sim) - before) * scene.effects.get<ParticleParams>().particle_volume_mm3);
       before = emitted(sim);
     }
-    const double mean_flow = double(before) * scene.particles->particle_volume_mm3 / scene.duration_s;
+    const double mean_flow =
+        double(before) * scene.effects.get<ParticleParams>().particle_volume_mm3 / scene.duration_s;
     EXPECT_NEAR(mean_flow, 2.0, 0.02) << (arterial ? "arterial" : "venous");
     // |DFT|² at bins 1 … 150 (up to 7.5 Hz); the heart rate is bin 24.
     const std::size_t n = per_frame.size();
@@ -159,7 +166,8 @@ TEST(Pulse, AnArterialCutBeatsAtTheHeartRateAboutItsMeanFlow) {
     // Whole particles: a frame emits ⌊C(t₁)/V⌋ − ⌊C(t₀)/V⌋ = ΔC/V + r₀ − r₁ (r the fractional
     // parts), so the rounding's DFT is V Σ (r_t − r_{t+1}) e^{−iωt}, which summation by parts
     // bounds by V (n · |1 − e^{iω}| + 2) = V (2n sin(πk/n) + 2) at bin k.
-    const double rounding = scene.particles->particle_volume_mm3 * (2.0 * n * std::sin(kPi * 24.0 / n) + 2.0);
+    const double rounding =
+        scene.effects.get<ParticleParams>().particle_volume_mm3 * (2.0 * n * std::sin(kPi * 24.0 / n) + 2.0);
     if (arterial) {
       EXPECT_EQ(peak, 24u);
       // A sine of amplitude A per frame has |X| = nA/2; the frame's volume averages a₁ Q̄ sin over

@@ -10,6 +10,8 @@
 #include <vector>
 
 #include "core/effects/blend/blend_stage.h"
+#include "core/effects/blend/optics_params.h"
+#include "core/physics/optics_tables.h"
 #include "core/runtime/image.h"
 
 namespace bleedsim {
@@ -40,7 +42,7 @@ struct Compositor {
     // pass those.
     Scene scene;
     scene.domain = domain;
-    if (lit) scene.optics = optics;
+    if (lit) scene.effects.set(optics);
     return blend_work(scene, tables.data(), tissue, stain, film, residue, frame, fixed_light);
   }
 };
@@ -263,7 +265,7 @@ TEST(FixedLight, ChangesNoByteOfTheFrame) {
   ASSERT_GT(bare, 1000);
   Scene scene;
   scene.domain = fixed.domain;
-  scene.optics = optics;
+  scene.effects.set(optics);
   std::vector<float> light(std::size_t(160) * 120 * kFixedLightChannels);
   const FixedLightPixel make{headlight(optics, scene.domain), scene.domain.grid(), light.data()};
   for (int j = 0; j < 120; ++j)

@@ -2,12 +2,15 @@
 // Gaussian's weights, a ramp survives the trip down and back up, and the edges clamp.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <numeric>
 #include <vector>
 
-#include "core/physics/pixel_kernels.h"
+#include "core/effects/blur/blur_params.h"
 #include "core/effects/blur/blur_stage.h"
+#include "core/physics/pixel_kernels.h"
 
 namespace bleedsim {
 namespace {
@@ -71,6 +74,23 @@ TEST(Blur, ARampSurvivesDownAndUpsamplingInsideTheEdges) {
   for (int i = 2; i < w - 2; ++i) EXPECT_NEAR(b.out[3 * w + i], 0.01f * float(i), 1e-6f) << i;
   // At the edge it clamps: the first pixel takes the first block's mean.
   EXPECT_NEAR(b.out[3 * w], 0.005f, 1e-7f);
+}
+
+// The downsampling factors are one list, kBlurFactors: [blur].downsample allows exactly them, and
+// each has an exact inverse, so a film of ones downsamples to exactly one (the block sums its
+// factor² ones exactly, and scales by a power of two).
+TEST(BlurFactors, TheTableAllowsExactlyTheListAndEachScalesExactly) {
+  const Range& allowed = param_named(blur_table(), "downsample").range;
+  EXPECT_EQ(allowed.only, std::vector<double>(std::begin(kBlurFactors), std::end(kBlurFactors)));
+  for (int f = 0; f <= 8; ++f)
+    EXPECT_EQ(allowed.contains(f), std::find(std::begin(kBlurFactors), std::end(kBlurFactors), f) !=
+                                       std::end(kBlurFactors))
+        << f;
+  for (const int f : kBlurFactors) {
+    EXPECT_EQ(inverse_factor(f) * float(f), 1.0f) << f;
+    const Blurred b(std::vector<float>(16 * 8, 1.0f), 16, 8, f, 0, 1.0);
+    for (const float v : b.low) EXPECT_EQ(v, 1.0f) << "factor " << f;
+  }
 }
 
 }  // namespace

@@ -11,6 +11,9 @@
 #include <sstream>
 #include <utility>
 
+#include "core/effects/contact/contact_params.h"
+#include "core/effects/particles/particle_model.h"
+#include "core/effects/particles/particle_params.h"
 #include "core/io/scenario.h"
 #include "core/physics/instrument.h"
 #include "tests/runtime/field_values.h"
@@ -132,11 +135,12 @@ std::string frame_problem(const ParticleModel& m, const Particles& p) {
 
 std::optional<ToolSample> tip_after_steps(const Scene& scene, std::uint64_t steps_done) {
   if (scene.tips.empty() || steps_done == 0) return std::nullopt;
-  return tool_at(scripted_tool(scene.tips), double(steps_done) / particle_steps_per_s(scene), false);
+  return tool_at(scripted_tool(scene.tips), double(steps_done) / resolve_particles(scene).steps_per_s, false);
 }
 
 float tip_body_mm(const Scene& scene) {
-  return float(scene.contact->tip_radius_mm + scene.particles->diameter_mm / 2.0);
+  return float(scene.effects.get<ContactParams>().tip_radius_mm +
+               scene.effects.get<ParticleParams>().diameter_mm / 2.0);
 }
 
 std::string inside_tip_problem(const ParticleModel& m, const Particles& p, const ToolSample& tip, float body_mm) {
@@ -158,7 +162,7 @@ double left_alone_s(const Scene& scene) {
   double end = 0.0;
   for (const Cut& cut : scene.cuts)
     if (cut.wound_mm * cut.flow_mm3_per_s_per_mm > 0.0) end = std::max(end, cut.start_s + cut.bleed_s);
-  if (scene.contact && !scene.tips.empty()) end = std::max(end, scene.tips.back().t_s);
+  if (scene.effects.has<ContactParams>() && !scene.tips.empty()) end = std::max(end, scene.tips.back().t_s);
   return end;
 }
 
@@ -167,8 +171,8 @@ namespace {
 std::string describe(const std::string& name, const Scene& scene, const ParticleModel& m, const RunSummary& r,
                      const Expect& e) {
   const ParticleCounts& c = r.final_counts;
-  const ParticleParams& pp = *scene.particles;
-  const ParticleMechanics mech = particle_mechanics(pp, scene.domain, scene.frame_rate_hz);
+  const ParticleParams& pp = scene.effects.get<ParticleParams>();
+  const ParticleMechanics mech = resolve_particles(pp, scene).mechanics;
   const double d = m.diameter_mm;
   char unbounded[120] = "";
   if (e.overlap_unbounded_until_s > 0.0)
@@ -200,14 +204,14 @@ std::string describe(const std::string& name, const Scene& scene, const Particle
 void run_and_check(const std::string& name, Scene scene, const Expect& expect, RunSummary* out,
                    const std::function<void(const Particles&)>& each_frame) {
   const auto began = std::chrono::steady_clock::now();
-  const ParticleModel m = make_particle_model(scene);
+  const ParticleModel m = resolve_particles(scene).model;
   const double alone_s = left_alone_s(scene);
-  const ParticleMechanics mech = particle_mechanics(*scene.particles, scene.domain, scene.frame_rate_hz);
+  const ParticleMechanics mech = resolve_particles(scene.effects.get<ParticleParams>(), scene).mechanics;
   const std::uint32_t settled_age = std::uint32_t(m.birth_steps) + std::uint32_t(mech.substeps);  // born, and a frame
-  const double terminal_speed = std::hypot(m.gravity_x, m.gravity_y) / scene.particles->drag_per_s;
+  const double terminal_speed = std::hypot(m.gravity_x, m.gravity_y) / scene.effects.get<ParticleParams>().drag_per_s;
   const std::int64_t frames = scene.frame_count();
   const double frame_rate = scene.frame_rate_hz;
-  const bool tip_body = scene.contact && !scene.tips.empty();
+  const bool tip_body = scene.effects.has<ContactParams>() && !scene.tips.empty();
   const float body_mm = tip_body ? tip_body_mm(scene) : 0.0f;
   // The frames from the one the particles are left alone in: the last quarter of them is "at rest".
   const std::int64_t first_alone = std::int64_t(std::ceil(alone_s * frame_rate - 1e-9)) - 1;

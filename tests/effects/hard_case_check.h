@@ -30,10 +30,11 @@
 #include <string>
 #include <vector>
 
+#include "core/effects/contact/contact_params.h"
 #include "core/effects/particles/particle_accounting.h"
 #include "core/effects/particles/particle_model.h"
-#include "core/simulation/simulation.h"
 #include "core/scene/tool.h"
+#include "core/simulation/simulation.h"
 
 namespace bleedsim::test {
 

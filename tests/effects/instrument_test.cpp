@@ -11,7 +11,10 @@
 #include <string>
 #include <vector>
 
+#include "core/effects/contact/contact_params.h"
 #include "core/effects/particles/particle_model.h"
+#include "core/effects/particles/particle_params.h"
+#include "core/effects/suction/suction_params.h"
 #include "core/io/scenario.h"
 #include "core/physics/instrument.h"
 #include "core/simulation/simulation.h"
@@ -38,7 +41,7 @@ void add_path(Scene& scene, double t0, double x0, double y0, double t1, double x
 
 // The particles alive in the ring, counted from their ages alone.
 std::uint64_t alive_in_ring(const Simulation& sim) {
-  const ParticleLifetime lifetime = particle_lifetime(sim.scene());
+  const ParticleLifetime lifetime = resolve_particles(sim.scene()).lifetime;
   std::uint64_t alive = 0;
   for (const std::uint32_t age : test::field_values<std::uint32_t>(sim, "particles/age")) alive += is_alive(lifetime, age);
   return alive;
@@ -54,11 +57,11 @@ TEST_P(SuctionAccounting, IsExactEveryFrame) {
   std::string why;
   if (GetParam() == BackendChoice::Want::cuda && !cuda_device_available(&why)) GTEST_SKIP() << "no CUDA device: " << why;
   Scene scene = pool_scene(4.0, 2.0, 1.0, 2.0);
-  scene.particles->capacity = 160;
-  scene.particles->lifetime_s = 0.4;
-  scene.particles->fade_s = 0.1;
+  scene.effects.get<ParticleParams>().capacity = 160;
+  scene.effects.get<ParticleParams>().lifetime_s = 0.4;
+  scene.effects.get<ParticleParams>().fade_s = 0.1;
   scene.cuts[0].bleed_s = 1.5;  // 2 mm³/s: 500 particles a second, 200 a lifetime, for 160 slots
-  scene.suction = SuctionParams{0.6, 0.4, 0x2};  // 100 particles a second at most
+  scene.effects.set(SuctionParams{0.6, 0.4, 0x2});  // 100 particles a second at most
   add_path(scene, 0.2, 4.0, 2.2, 1.8, 4.0, 2.2);
   Simulation sim(scene, BackendChoice{GetParam(), 2});
   ParticleCounts c{};
@@ -87,12 +90,12 @@ INSTANTIATE_TEST_SUITE_P(Backends, SuctionAccounting,
 // and is empty from t_on + 2 s on.
 TEST(Suction, DrainsAPoolWithinReachAtItsFlow) {
   Scene scene = pool_scene(4.0, 1.0, 1.0, 3.5);
-  scene.suction = SuctionParams{20.0, 0.5, 0x2};
+  scene.effects.set(SuctionParams{20.0, 0.5, 0x2});
   const double t_on = 1.0 + 1.0 / 3000.0;  // between sub-steps
   add_path(scene, t_on, 4.0, 5.5, 3.5, 4.0, 5.5);
   Simulation sim(scene, kCpu);
-  const double volume = scene.particles->particle_volume_mm3;
-  const double x = 0.5 / particle_steps_per_s(scene) / volume;
+  const double volume = scene.effects.get<ParticleParams>().particle_volume_mm3;
+  const double x = 0.5 / resolve_particles(scene).steps_per_s / volume;
   double n0 = 0;
   while (sim.frames_done() < scene.frame_count()) {
     sim.step();
@@ -121,7 +124,7 @@ TEST(Suction, FasterThanTheBleedingKeepsTheFieldEmpty) {
   Scene scene = pool_scene(4.0, 3.0, 0.25, 3.0);
   scene.cuts[0].bleed_s = 2.0;
   scene.cuts[0].flow_mm3_per_s_per_mm = 0.5;
-  scene.suction = SuctionParams{1.0, 1.0, 0x2};
+  scene.effects.set(SuctionParams{1.0, 1.0, 0x2});
   add_path(scene, 0.0, 4.0, 3.0, 3.0, 4.0, 3.0);
   Simulation sim(scene, kCpu);
   while (sim.frames_done() < scene.frame_count()) {
@@ -137,7 +140,7 @@ TEST(Suction, FasterThanTheBleedingKeepsTheFieldEmpty) {
 // particles move exactly as without suction.
 TEST(Suction, ATipInACornerTakesWhatItReachesAndOneOffThePanelNothing) {
   Scene corner = pool_scene(1.0, 3.0, 1.0, 3.0);
-  corner.suction = SuctionParams{1.5, 5.0, 0x2};
+  corner.effects.set(SuctionParams{1.5, 5.0, 0x2});
   add_path(corner, 1.0, 0.0, 6.0, 3.0, 0.0, 6.0);
   Simulation sim(corner, kCpu);
   while (sim.frames_done() < corner.frame_count()) sim.step();
@@ -146,14 +149,14 @@ TEST(Suction, ATipInACornerTakesWhatItReachesAndOneOffThePanelNothing) {
   EXPECT_GT(c.alive, 0u);
   const std::vector<float> position = test::field_values<float>(sim, "particles/position");
   const std::vector<std::uint32_t> age = test::field_values<std::uint32_t>(sim, "particles/age");
-  const ParticleLifetime lifetime = particle_lifetime(corner);
+  const ParticleLifetime lifetime = resolve_particles(corner).lifetime;
   for (std::size_t s = 0; s < age.size(); ++s) {
     if (!is_alive(lifetime, age[s])) continue;
     EXPECT_GT(std::hypot(position[2 * s] - 0.0, position[2 * s + 1] - 6.0), 1.5) << "slot " << s;
   }
 
   Scene off = pool_scene(1.0, 3.0, 1.0, 3.0), without = off;
-  off.suction = SuctionParams{1.5, 5.0, 0x2};
+  off.effects.set(SuctionParams{1.5, 5.0, 0x2});
   add_path(off, 0.5, -2.0, 3.0, 3.0, -1.6, 5.0);
   Simulation a(off, kCpu), b(without, kCpu);
   while (a.frames_done() < off.frame_count()) {
@@ -202,7 +205,7 @@ TEST(Contact, APushedOutParticleLandsAtTheNearestFreePoint) {
 
 // Whether every live particle's centre is outside the tip's body, by the kernel's own float test.
 testing::AssertionResult no_particle_inside(const Simulation& sim, const ToolSample& tip, float body) {
-  const ParticleLifetime lifetime = particle_lifetime(sim.scene());
+  const ParticleLifetime lifetime = resolve_particles(sim.scene()).lifetime;
   const std::vector<float> position = test::field_values<float>(sim, "particles/position");
   const std::vector<std::uint32_t> age = test::field_values<std::uint32_t>(sim, "particles/age");
   for (std::size_t s = 0; s < age.size(); ++s)
@@ -222,10 +225,10 @@ ToolSample tip_at_frame_end(const Simulation& sim) {
 // live particle's centre is inside its body, by the kernel's own test in float.
 TEST(Contact, NoParticleIsInsideTheTipAfterASubStep) {
   Scene scene = pool_scene(4.0, 1.0, 2.0, 3.0);
-  scene.contact = ContactParams{0.5};
+  scene.effects.set(ContactParams{0.5});
   scene.tips = {TipPoint{1.0, 0.5, 5.6}, TipPoint{2.0, 7.5, 5.6}, TipPoint{3.0, 0.2, 5.9}};
   Simulation sim(scene, kCpu);
-  const float body = float(0.5 + scene.particles->diameter_mm / 2.0);
+  const float body = float(0.5 + scene.effects.get<ParticleParams>().diameter_mm / 2.0);
   int checked = 0;
   while (sim.frames_done() < scene.frame_count()) {
     sim.step();
@@ -259,7 +262,7 @@ TEST(Contact, ItsWakeThroughAPoolClosesAgain) {
   for (const std::uint64_t seed : {1u, 2u, 3u, 4u}) {
     Scene scene = pool_scene(4.0, 5.0, 4.0, 4.5);
     scene.seed = seed;
-    scene.contact = ContactParams{0.5};
+    scene.effects.set(ContactParams{0.5});
     scene.tips = {TipPoint{2.5, 0.5, 4.5}, TipPoint{3.5, 7.5, 4.5}};
     Simulation sim(scene, kCpu);
     double least_while_over = 1.0;
@@ -311,14 +314,14 @@ TEST(Suction, TheStylusSucksOnlyInContactWithItsButtonHeld) {
 TEST(Contact, AHostsStylusSamplesMoveTheInstrument) {
   Scene scene = pool_scene(4.0, 5.0, 2.0, 1.5);
   scene.haptics = HapticParams{};
-  scene.contact = ContactParams{0.5};
+  scene.effects.set(ContactParams{0.5});
   Simulation sim(scene, kCpu);
-  const float body = float(0.5 + scene.particles->diameter_mm / 2.0);
+  const float body = float(0.5 + scene.effects.get<ParticleParams>().diameter_mm / 2.0);
   // The tip sweeps the pool from left to right at 8 mm/s from 0.6 s, a sample each millisecond.
   std::vector<ToolSample> samples;
   for (int n = 0; n <= 1500; ++n) {
     const double t = n / 1000.0;
-    samples.push_back({t, 0.5 + 8.0 * std::max(0.0, t - 0.6), 5.5, t >= 0.6, false});
+    samples.push_back({t, 0.5 + 8.0 * std::max(0.0, t - 0.6), 5.5, t >= 0.6, 0});
   }
   std::size_t given = 0;
   for (int k = 0; k < scene.frame_count(); ++k) {
@@ -330,9 +333,9 @@ TEST(Contact, AHostsStylusSamplesMoveTheInstrument) {
     const ToolSample tip = *tool_at({samples.begin(), samples.begin() + std::ptrdiff_t(given)}, end, true);
     ASSERT_TRUE(no_particle_inside(sim, tip, body)) << "t = " << sim.time_s();
   }
-  EXPECT_THROW(sim.add_stylus_sample({0.0, 1.0, 1.0, true, false}), std::invalid_argument);  // not later
+  EXPECT_THROW(sim.add_stylus_sample({0.0, 1.0, 1.0, true, 0}), std::invalid_argument);  // not later
   Simulation without(pool_scene(4.0, 5.0, 2.0, 1.0), kCpu);
-  EXPECT_THROW(without.add_stylus_sample({0.0, 1.0, 1.0, true, false}), std::invalid_argument);
+  EXPECT_THROW(without.add_stylus_sample({0.0, 1.0, 1.0, true, 0}), std::invalid_argument);
 }
 
 }  // namespace

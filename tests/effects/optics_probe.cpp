@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "core/effects/blend/blend_stage.h"
+#include "core/effects/blend/optics_params.h"
+#include "core/physics/optics_tables.h"
 
 int main(int argc, char** argv) {
   using namespace bleedsim;
@@ -34,7 +36,7 @@ int main(int argc, char** argv) {
       optics.oxygen_saturation = s;
       optics.falloff = false;
       optics.specular = optics.sheen = 0.0;
-      scene.optics = optics;
+      scene.effects.set(optics);
       const float film = float(h);
       std::uint8_t frame[4];
       blend_work(scene, tables.data(), tissue, nullptr, &film, nullptr, frame)(0, 0);

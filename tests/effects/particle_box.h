@@ -12,6 +12,7 @@
 
 #include "core/effects/particles/particle_buffers.h"
 #include "core/effects/particles/particle_model.h"
+#include "core/effects/particles/particle_params.h"
 #include "core/effects/surface/surface_stage.h"
 #include "core/mesh/surface_bake.h"
 #include "core/runtime/backend.h"
@@ -29,7 +30,7 @@ inline Scene box_scene(double width_mm, double height_mm, const ParticleParams& 
   Scene scene;
   scene.domain = Domain{int(std::ceil(width_mm)), int(std::ceil(height_mm)), width_mm, height_mm};
   scene.frame_rate_hz = 30.0;
-  scene.particles = params;
+  scene.effects.set(params);
   return scene;
 }
 
@@ -38,7 +39,7 @@ inline Scene box_scene(double width_mm, double height_mm, const ParticleParams& 
 // centre `spacing` diameters from its neighbours.
 inline std::vector<Point> hex_block(const Scene& scene, int columns, int rows, double left_mm = 0.0,
                                     double spacing = 1.0) {
-  const double d = scene.particles->diameter_mm * spacing, row = d * std::sqrt(3.0) / 2.0;
+  const double d = scene.effects.get<ParticleParams>().diameter_mm * spacing, row = d * std::sqrt(3.0) / 2.0;
   std::vector<Point> points;
   for (int r = 0; r < rows; ++r)
     for (int c = 0; c < columns - r % 2; ++c)
@@ -48,7 +49,7 @@ inline std::vector<Point> hex_block(const Scene& scene, int columns, int rows, d
 
 // A round drop of about n particles in a hexagonal packing, centred at (x, y).
 inline std::vector<Point> hex_disc(const Scene& scene, int n, double x, double y) {
-  const double d = scene.particles->diameter_mm, row = d * std::sqrt(3.0) / 2.0;
+  const double d = scene.effects.get<ParticleParams>().diameter_mm, row = d * std::sqrt(3.0) / 2.0;
   std::vector<std::pair<double, Point>> all;
   const int reach = int(std::ceil(std::sqrt(double(n)))) + 2;
   for (int r = -reach; r <= reach; ++r)
@@ -66,9 +67,9 @@ class ParticleBox {
  public:
   // Particles at `points`, at rest, old enough that their forces are at full strength.
   ParticleBox(const Scene& scene, const std::vector<Point>& points)
-      : scene_(scene), model_(make_particle_model(scene)), cpu_(make_cpu_backend(1)), n_(int(points.size())) {
+      : scene_(scene), model_(resolve_particles(scene).model), cpu_(make_cpu_backend(1)), n_(int(points.size())) {
     if (scene.mesh) {
-      maps_ = bake_surface_maps(scene.mesh->mesh(), texture_panel(scene.domain), scene.device_gravity_mm_s2());
+      maps_ = bake_surface_maps(scene.mesh->mesh(), texture_panel(scene.domain), device_gravity_mm_s2(scene));
       model_.surface = {maps_.frame.data(), maps_.gravity.data(), scene.domain.grid()};
     }
     ParticleArrays& a = args_.arrays;

@@ -30,11 +30,13 @@
 #include <string>
 #include <vector>
 
+#include "core/effects/cuts.h"
 #include "core/effects/particles/particle_model.h"
-#include "core/simulation/simulation.h"
-#include "tests/runtime/field_values.h"
+#include "core/effects/particles/particle_params.h"
 #include "core/runtime/tissue.h"
+#include "core/simulation/simulation.h"
 #include "core/study/study_knobs.h"
+#include "tests/runtime/field_values.h"
 
 namespace bleedsim {
 namespace {
@@ -50,8 +52,8 @@ Scene small_scene(std::uint64_t seed) {
   scene.frame_rate_hz = 30.0;
   scene.seed = seed;
   scene.tissue = procedural_tissue(scene.domain.width_px, scene.domain.height_px, 1);
-  scene.particles = ParticleParams{};
-  Cut cut = scene.cut_at(3.0, 3.0, 0.0);
+  scene.effects.set(ParticleParams{});
+  Cut cut = cut_at(scene, 3.0, 3.0, 0.0);
   cut.bleed_s = 0.5;
   scene.cuts.push_back(cut);
   return scene;
@@ -75,7 +77,7 @@ Outcome run(const Scene& scene) {
   for (int y = 0; y < d.height_px; ++y)
     for (int x = 0; x < d.width_px; ++x)
       out.film[std::size_t((y / py) * bx + x / px)] += film[std::size_t(y * d.width_px + x)] / (px * py);
-  const ParticleModel m = make_particle_model(scene);
+  const ParticleModel m = resolve_particles(scene).model;
   const std::vector<float> position = test::field_values<float>(sim, "particles/position");
   const std::vector<std::uint32_t> age = test::field_values<std::uint32_t>(sim, "particles/age");
   double sum = 0;
@@ -181,7 +183,7 @@ TEST(ParticleConvergence, FilmAndPileConvergeAsTheParticlesShrink) {
   // step; the next test shows the fewest stable sub-steps are converged).
   const Ladder ladder = climb("particle size", {4.0, 2.0, 1.0}, 2.0, [](Scene& s, double f) {
     find_knob("particle_size")->apply(s, f);
-    s.particles->substeps = 0;
+    s.effects.get<ParticleParams>().substeps = 0;
   });
   expect_shrinking("film", ladder.film);
   expect_shrinking("pile height", ladder.height);
@@ -190,7 +192,7 @@ TEST(ParticleConvergence, FilmAndPileConvergeAsTheParticlesShrink) {
 TEST(ParticleConvergence, TheFewestStableSubStepsAreAlreadyConverged) {
   const auto coarse = [](Scene& s) {
     find_knob("particle_size")->apply(s, 2.0);
-    s.particles->substeps = 0;  // the fewest this size's contact allows
+    s.effects.get<ParticleParams>().substeps = 0;  // the fewest this size's contact allows
   };
   Scene base = small_scene(1);
   coarse(base);

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "core/effects/particles/particle_model.h"
+#include "core/effects/particles/particle_params.h"
 #include "tests/effects/particle_box.h"
 
 namespace bleedsim {
@@ -140,7 +141,7 @@ TEST(ParticleSymmetry, AMirroredBlockStaysMirrored) {
 TEST(ParticleGrip, ASmallDropStaysAndALargeOneSlides) {
   ParticleParams p;
   Scene scene = test::box_scene(12, 24, p);
-  const DropLimit limit = critical_drop(p, scene.domain, scene.frame_rate_hz);
+  const DropLimit limit = resolve_particles(p, scene).drop;
   ASSERT_FALSE(limit.holds_any);
   const int small = int(0.5 * limit.volume_mm3 / p.particle_volume_mm3), large = 10 * small;
   ASSERT_GE(small, 7) << "a drop of a few particles says little";

@@ -20,9 +20,10 @@
 #include <utility>
 #include <vector>
 
-#include "core/runtime/input_error.h"
 #include "core/effects/particles/particle_model.h"
+#include "core/effects/particles/particle_params.h"
 #include "core/io/scenario.h"
+#include "core/runtime/input_error.h"
 #include "core/simulation/simulation.h"
 #include "tests/effects/hard_case_check.h"
 #include "tests/test_paths.h"
@@ -51,14 +52,15 @@ std::string read_text(const std::string& path) {
 
 // The emission per step of a cut, in particles.
 double per_step(const Scene& scene, const Cut& cut) {
-  return cut.wound_mm * cut.flow_mm3_per_s_per_mm / scene.particles->particle_volume_mm3 / particle_steps_per_s(scene);
+  return cut.wound_mm * cut.flow_mm3_per_s_per_mm / scene.effects.get<ParticleParams>().particle_volume_mm3 /
+         resolve_particles(scene).steps_per_s;
 }
 
 // A burst of coincident births: they ease apart (soft births) instead of blasting apart, under
 // twice the terminal speed (checked every frame by run_and_check).
 TEST(ParticleHardCases, SamePoint) {
   Scene scene = load_hard("same-point");
-  const ParticleParams& p = *scene.particles;
+  const ParticleParams& p = scene.effects.get<ParticleParams>();
   ASSERT_EQ(p.jitter_mm, 0.0);
   ASSERT_EQ(p.velocity_jitter_mm_s, 0.0);
   ASSERT_EQ(scene.cuts.size(), 1u);
@@ -75,7 +77,7 @@ TEST(ParticleHardCases, SamePoint) {
 
 TEST(ParticleHardCases, RingWrap) {
   Scene scene = load_hard("ring-wrap");
-  const std::uint64_t capacity = std::uint64_t(scene.particles->capacity);
+  const std::uint64_t capacity = std::uint64_t(scene.effects.get<ParticleParams>().capacity);
   RunSummary r;
   run_and_check("ring-wrap", std::move(scene), Expect{}, &r);
   if (HasFatalFailure()) return;
@@ -103,9 +105,9 @@ TEST(ParticleHardCases, BigPile) {
 // The fewest sub-steps the contact allows (substeps = 0) run stably to rest; one fewer is refused.
 TEST(ParticleHardCases, StabilityEdge) {
   Scene scene = load_hard("stability-edge");
-  const ParticleParams& p = *scene.particles;
+  const ParticleParams& p = scene.effects.get<ParticleParams>();
   ASSERT_EQ(p.substeps, 0) << "the scene should take the fewest sub-steps";
-  const ParticleMechanics mech = particle_mechanics(p, scene.domain, scene.frame_rate_hz);
+  const ParticleMechanics mech = resolve_particles(p, scene).mechanics;
   ASSERT_LT(mech.dt_s, mech.step_limit_s);
   ASSERT_GE(1.0 / (scene.frame_rate_hz * (mech.substeps - 1)), mech.step_limit_s);
   RunSummary r;
@@ -114,7 +116,7 @@ TEST(ParticleHardCases, StabilityEdge) {
 
 TEST(ParticleHardCases, StabilityEdgeOneSubStepFewerIsRefused) {
   Scene scene = load_hard("stability-edge");
-  const int fewest = particle_mechanics(*scene.particles, scene.domain, scene.frame_rate_hz).substeps;
+  const int fewest = resolve_particles(scene.effects.get<ParticleParams>(), scene).mechanics.substeps;
   const std::string text = read_text(hard_scenario("stability-edge"));
   const std::string fewer =
       std::regex_replace(text, std::regex(R"((\n)\[particles\]\n)"), "$1[particles]\nsubsteps = " + std::to_string(fewest - 1) + "\n");
@@ -138,7 +140,7 @@ TEST(ParticleHardCases, CornerCut) {
   EXPECT_EQ(scene.cuts[0].y_mm, scene.domain.height_mm);
   EXPECT_EQ(scene.cuts[1].x_mm, scene.domain.width_mm);
   EXPECT_EQ(scene.cuts[1].y_mm, 0.0);
-  const ParticleModel m = make_particle_model(scene);
+  const ParticleModel m = resolve_particles(scene).model;
   // The clamp did its part: particles sat exactly on the bottom-left corner point, and on the
   // right wall's line.
   int most_in_corner = 0, most_on_right_wall = 0;
@@ -167,7 +169,7 @@ TEST(ParticleHardCases, CornerCut) {
 
 TEST(ParticleHardCases, CrowdedCells) {
   Scene scene = load_hard("crowded-cells");
-  const ParticleModel m = make_particle_model(scene);
+  const ParticleModel m = resolve_particles(scene).model;
   ASSERT_EQ(scene.cuts.size(), 1u);
   const Cut& cut = scene.cuts[0];
   // Every step puts several new particles into one cell, on top of the crowd already there.
@@ -202,7 +204,7 @@ TEST(ParticleRest, TheDefaultPanelStopsWithinThreeSecondsOfTheLastEmission) {
     Scene scene = base;
     scene.seed = seed;
     scene.duration_s = last_emission + kWithin;
-    const ParticleModel m = make_particle_model(scene);
+    const ParticleModel m = resolve_particles(scene).model;
     Simulation sim(scene, kCpu);
     while (sim.frames_done() < scene.frame_count()) sim.step();
     const Particles p(sim);

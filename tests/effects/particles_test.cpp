@@ -11,11 +11,12 @@
 #include <map>
 #include <vector>
 
-#include "core/runtime/backend.h"
 #include "core/effects/particles/particle_accounting.h"
 #include "core/effects/particles/particle_buffers.h"
 #include "core/effects/particles/particle_model.h"
+#include "core/effects/particles/particle_params.h"
 #include "core/physics/particles.h"
+#include "core/runtime/backend.h"
 #include "tests/effects/particle_box.h"
 
 namespace bleedsim {
@@ -91,16 +92,16 @@ TEST(ParticleAccounting, ExpiryAndOverwritingTogetherMatchTheRingReplayed) {
 TEST(ParticleModel, ItsPartsAreTheWholeModels) {
   Scene scene;
   scene.domain = Domain{200, 150, 47.3, 31.9};  // not whole cells
-  scene.particles = ParticleParams{};
-  scene.particles->cell_mm = 0.45;
-  scene.particles->lifetime_s = 2.0;
-  scene.particles->fade_s = 0.3;
-  scene.particles->substeps = 400;
-  const ParticleModel m = make_particle_model(scene);
-  EXPECT_EQ(particle_lifetime(scene).steps, m.lifetime.steps);
-  EXPECT_EQ(particle_lifetime(scene).fade_steps, m.lifetime.fade_steps);
+  scene.effects.set(ParticleParams{});
+  scene.effects.get<ParticleParams>().cell_mm = 0.45;
+  scene.effects.get<ParticleParams>().lifetime_s = 2.0;
+  scene.effects.get<ParticleParams>().fade_s = 0.3;
+  scene.effects.get<ParticleParams>().substeps = 400;
+  const ParticleModel m = resolve_particles(scene).model;
+  EXPECT_EQ(resolve_particles(scene).lifetime.steps, m.lifetime.steps);
+  EXPECT_EQ(resolve_particles(scene).lifetime.fade_steps, m.lifetime.fade_steps);
   EXPECT_EQ(m.lifetime.steps, 24000u);  // 2 s at 30 Hz × 400 sub-steps
-  EXPECT_EQ(particle_cell_count(scene), Count(cell_count(m)));
+  EXPECT_EQ(resolve_particles(scene).cells, Count(cell_count(m)));
   EXPECT_EQ(cell_count(m), 106u * 71u);  // ⌈47.3 / 0.45⌉ × ⌈31.9 / 0.45⌉
 }
 
@@ -165,7 +166,7 @@ TEST(HostMinMax, GiveLibmsResultsWhereCFixesThem) {
 // The default contact, with cohesion, for a scene of any panel.
 ParticleModel pair_model() {
   Scene scene = test::box_scene(16, 12);
-  return make_particle_model(scene);
+  return resolve_particles(scene).model;
 }
 
 // ---- emit --------------------------------------------------------------------------------------
@@ -353,9 +354,11 @@ TEST(ParticleStability, TheLimitSolvesTheFastestModesCondition) {
   EXPECT_NEAR(6 * k * dt * dt + (12 * c - 2 * drag) * dt, 4.0, 1e-9);
   // The defaults' fewest sub-steps are inside the enforced limit, and one fewer is not.
   const Scene scene = test::box_scene(32, 24);
-  const ParticleMechanics mech = particle_mechanics(*scene.particles, scene.domain, 30.0);
-  EXPECT_NEAR(mech.step_limit_s, stable_time_step_s(mech.stiffness_per_s2, mech.damping_per_s,
-                                                   scene.particles->drag_per_s, kDesignContacts), 1e-15);
+  const ParticleMechanics mech = resolve_particles(scene.effects.get<ParticleParams>(), scene).mechanics;
+  EXPECT_NEAR(mech.step_limit_s,
+              stable_time_step_s(mech.stiffness_per_s2, mech.damping_per_s,
+                                 scene.effects.get<ParticleParams>().drag_per_s, kDesignContacts),
+              1e-15);
   EXPECT_LT(mech.dt_s, mech.step_limit_s);
   EXPECT_GE(1.0 / (30.0 * (mech.substeps - 1)), mech.step_limit_s);
 }
@@ -368,8 +371,8 @@ double largest_late_speed(double dt_fraction, double seconds) {
   p.cohesion_mm3_s2 = p.pinning_mm3_s2 = p.yield_mm2_s2 = 0.0;
   const int columns = 40, rows = 20;
   Scene scene = test::box_scene(columns * p.diameter_mm, 2.0 * rows * p.diameter_mm, p);
-  const ParticleMechanics mech = particle_mechanics(p, scene.domain, 30.0);
-  scene.particles->substeps = 1;
+  const ParticleMechanics mech = resolve_particles(p, scene).mechanics;
+  scene.effects.get<ParticleParams>().substeps = 1;
   scene.frame_rate_hz = 1.0 / (dt_fraction * stable_time_step_s(mech.stiffness_per_s2, mech.damping_per_s,
                                                                  p.drag_per_s, 6));
   test::ParticleBox box(scene, test::hex_block(scene, columns, rows));

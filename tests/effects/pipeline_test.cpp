@@ -6,7 +6,13 @@
 #include <stdexcept>
 
 #include "core/effects/blend/blend_stage.h"
+#include "core/effects/blur/blur_params.h"
+#include "core/effects/cuts.h"
+#include "core/effects/particles/particle_params.h"
 #include "core/effects/pipeline.h"
+#include "core/effects/resolved.h"
+#include "core/effects/spread/spread_params.h"
+#include "core/physics/optics_tables.h"
 #include "core/simulation/simulation.h"
 #include "tests/runtime/scenes_in_code.h"
 
@@ -18,10 +24,10 @@ const BackendChoice kCpu{BackendChoice::Want::cpu, 2};
 // The in-code scene with particles from a cut at (8, 4) mm, and with [blur] when asked.
 Scene particle_scene(bool blurred) {
   Scene scene = test::scene_in_code(false);
-  scene.particles = ParticleParams{};
-  scene.particles->capacity = 256;
-  scene.cuts = {scene.cut_at(8.0, 4.0, 0.0)};
-  if (blurred) scene.blur = BlurParams{};
+  scene.effects.set(ParticleParams{});
+  scene.effects.get<ParticleParams>().capacity = 256;
+  scene.cuts = {cut_at(scene, 8.0, 4.0, 0.0)};
+  if (blurred) scene.effects.set(BlurParams{});
   return scene;
 }
 
@@ -59,7 +65,7 @@ TEST(Pipeline, EstimatesExactlyWhatItAllocates) {
   for (const bool spread : {false, true}) {
     const Scene scene = test::scene_in_code(spread);
     Simulation sim(scene, kCpu);
-    EXPECT_EQ(Pipeline::backend_bytes(scene), sim.backend().bytes_in_use()) << "spread " << spread;
+    EXPECT_EQ(Pipeline::backend_bytes(scene, resolve(scene)), sim.backend().bytes_in_use()) << "spread " << spread;
   }
 }
 
@@ -82,7 +88,7 @@ TEST(Pipeline, TheFilmsStagesRunOnlyWhenTheSceneCallsForThem) {
   // A spread-only scene allocates nothing for a film: no splat, blur or Beer–Lambert table.
   Simulation spread(test::scene_in_code(true), kCpu);
   EXPECT_EQ(spread.backend().launches("splat"), 0u);
-  EXPECT_EQ(Pipeline::backend_bytes(test::scene_in_code(true)), spread.backend().bytes_in_use());
+  EXPECT_EQ(Pipeline::backend_bytes(spread.scene(), spread.resolved()), spread.backend().bytes_in_use());
 }
 
 // Every field has one writer, and the list says which scenario table calls for it.
@@ -103,7 +109,7 @@ TEST(StageKinds, EachFieldHasOneWriterAndTheTableThatCallsForIt) {
 // the order of State's fields, and so of every frame's hash.
 TEST(Pipeline, RunsEachStageAfterTheStagesWhoseFieldsItReads) {
   Scene scene = particle_scene(true);
-  scene.spread = SpreadParams{};
+  scene.effects.set(SpreadParams{});
   EXPECT_EQ(Pipeline::stage_names(scene),
             (std::vector<std::string>{"spread", "particles", "splat", "blur", "blend"}));
   const Simulation sim(scene, kCpu);
@@ -128,11 +134,11 @@ TEST(Pipeline, TheBlendReadsTheFieldsTheSceneMakes) {
 // the stage, the field, its writer and the table that calls for the writer.
 TEST(Pipeline, RefusesAStageWhoseInputNoStageOfTheSceneWrites) {
   Scene scene = test::scene_in_code(false);
-  scene.blur = BlurParams{};  // and no [particles]: nothing makes the film it blurs
+  scene.effects.set(BlurParams{});  // and no [particles]: nothing makes the film it blurs
   std::unique_ptr<Backend> cpu = make_cpu_backend(1);
   State state;
   try {
-    Pipeline pipeline(scene, state, *cpu);
+    Pipeline pipeline(scene, resolve(scene), state, *cpu);
     FAIL() << "built";
   } catch (const std::invalid_argument& e) {
     EXPECT_STREQ(e.what(), "blur: the blur stage reads splat/thickness, which the splat stage writes; a scene calls for "
@@ -140,7 +146,7 @@ TEST(Pipeline, RefusesAStageWhoseInputNoStageOfTheSceneWrites) {
   }
   EXPECT_EQ(cpu->bytes_in_use(), 0u);
   EXPECT_TRUE(state.fields.empty());
-  EXPECT_THROW(Pipeline::backend_bytes(scene), std::invalid_argument);
+  EXPECT_THROW(Pipeline::backend_bytes(scene, resolve(scene)), std::invalid_argument);
 }
 
 TEST(State, AMissingInputIsABug) {

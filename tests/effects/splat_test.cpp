@@ -10,8 +10,10 @@
 #include <numeric>
 #include <vector>
 
-#include "core/physics/splat.h"
+#include "core/effects/particles/particle_model.h"
+#include "core/effects/particles/particle_params.h"
 #include "core/effects/particles/splat_stage.h"
+#include "core/physics/splat.h"
 
 namespace bleedsim {
 namespace {

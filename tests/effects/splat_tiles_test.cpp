@@ -11,6 +11,8 @@
 #include <string>
 #include <vector>
 
+#include "core/effects/particles/particle_model.h"
+#include "core/effects/particles/particle_params.h"
 #include "core/effects/particles/splat_stage.h"
 #include "core/physics/splat.h"
 #include "core/runtime/backend.h"

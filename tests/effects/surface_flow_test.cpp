@@ -10,6 +10,8 @@
 #include <string>
 #include <vector>
 
+#include "core/effects/particles/particle_model.h"
+#include "core/effects/particles/particle_params.h"
 #include "core/io/scenario.h"
 #include "core/simulation/simulation.h"
 #include "tests/effects/particle_box.h"
@@ -47,11 +49,12 @@ TEST(SurfaceFlow, OnATiltedPlaneALoneParticleFallsAtGSinTheSlope) {
     at.scale = 2.0;
     scene.mesh = std::make_shared<const MeshSurface>(placed(test::flat_panel_mesh(32.0, 24.0), at));
     test::ParticleBox box(scene, {{12.0, 6.0}});
-    const double theta = theta_deg * kDegree, phi = phi_deg * kDegree, g = scene.particles->gravity_y_mm_s2;
+    const double theta = theta_deg * kDegree, phi = phi_deg * kDegree,
+                 g = scene.effects.get<ParticleParams>().gravity_y_mm_s2;
     const double slope = std::acos(std::cos(phi) * std::sin(theta));
     const double gx = -g * std::sin(phi), gy = g * std::cos(phi) * std::cos(theta);
     ASSERT_NEAR(std::hypot(gx, gy), g * std::sin(slope), 1e-9 * g);
-    const double gamma = scene.particles->drag_per_s, dt = box.dt(), q = 1.0 / (1.0 + gamma * dt);
+    const double gamma = scene.effects.get<ParticleParams>().drag_per_s, dt = box.dt(), q = 1.0 / (1.0 + gamma * dt);
     const long n = std::lround(0.02 / dt);  // 20 ms: two time constants, 2 mm at most
     double travelled = 0.0;
     for (long k = 1; k <= n; ++k) travelled += dt * (1.0 - std::pow(q, double(k)));
@@ -111,8 +114,9 @@ TEST(SurfaceFlow, OnATiltedCylinderBloodRunsDownTheSteepestDescent) {
   const int width_px = 600, height_px = 700;
   Scene scene = lone_particle_scene(trough.length_mm, trough.arc_mm(), width_px, height_px);
   scene.mesh = std::make_shared<const MeshSurface>(trough.mesh());
-  const double g = scene.particles->gravity_y_mm_s2, gamma = scene.particles->drag_per_s;
-  const Eigen::Vector3d gravity = scene.device_gravity_mm_s2(), axis = trough.turn() * Eigen::Vector3d::UnitX();
+  const double g = scene.effects.get<ParticleParams>().gravity_y_mm_s2,
+               gamma = scene.effects.get<ParticleParams>().drag_per_s;
+  const Eigen::Vector3d gravity = device_gravity_mm_s2(scene), axis = trough.turn() * Eigen::Vector3d::UnitX();
   const double facet = 2.0 * trough.half_arc / trough.facets, texel = 2.0 * trough.half_arc / height_px;
   const double beta = trough.tilt, tilt = (facet + texel) / 2.0;
   double bound = 0.0;

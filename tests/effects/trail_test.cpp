@@ -6,10 +6,15 @@
 #include <vector>
 
 #include "core/effects/blend/blend_stage.h"
+#include "core/effects/blend/optics_params.h"
+#include "core/effects/cuts.h"
+#include "core/effects/particles/particle_params.h"
+#include "core/effects/trail/trail_params.h"
 #include "core/effects/trail/trail_stage.h"
+#include "core/physics/optics_tables.h"
 #include "core/physics/pixel_kernels.h"
-#include "core/simulation/simulation.h"
 #include "core/runtime/tissue.h"
+#include "core/simulation/simulation.h"
 #include "tests/runtime/field_values.h"
 
 namespace bleedsim {
@@ -60,16 +65,16 @@ TEST(TrailStage, WhereADropHasRunTheResidueDries) {
   scene.domain = Domain{40, 240, 2.0, 12.0};
   scene.duration_s = 3.0;
   scene.tissue = procedural_tissue(40, 240, 3);
-  scene.particles = ParticleParams{};
-  scene.particles->pinning_mm3_s2 = scene.particles->yield_mm2_s2 = 0.0;
-  scene.particles->capacity = 1024;
-  scene.trail = TrailParams{};
-  scene.trail->drying_s = 1.5;
-  Cut cut = scene.cut_at(1.0, 1.5, 0.0);
+  scene.effects.set(ParticleParams{});
+  scene.effects.get<ParticleParams>().pinning_mm3_s2 = scene.effects.get<ParticleParams>().yield_mm2_s2 = 0.0;
+  scene.effects.get<ParticleParams>().capacity = 1024;
+  scene.effects.set(TrailParams{});
+  scene.effects.get<TrailParams>().drying_s = 1.5;
+  Cut cut = cut_at(scene, 1.0, 1.5, 0.0);
   cut.bleed_s = 0.2;
   scene.cuts.push_back(cut);
   Simulation sim(scene, kCpu);
-  const float decay = trail_decay_per_frame(*scene.trail, scene.frame_rate_hz);
+  const float decay = trail_decay_per_frame(scene.effects.get<TrailParams>(), scene.frame_rate_hz);
   // The path's middle, 6 mm down: pixel (20, 120). Frame by frame: covered, then bare for good.
   const std::size_t p = 120 * 40 + 20;
   std::vector<float> film, residue;
@@ -87,7 +92,8 @@ TEST(TrailStage, WhereADropHasRunTheResidueDries) {
   for (std::size_t k = last_covered + 1; k < film.size(); ++k) {
     EXPECT_EQ(residue[k], residue[k - 1] * decay) << k;
     const double n = double(k - last_covered);
-    const double closed = residue[last_covered] * std::exp(-n / (scene.frame_rate_hz * scene.trail->drying_s));
+    const double closed =
+        residue[last_covered] * std::exp(-n / (scene.frame_rate_hz * scene.effects.get<TrailParams>().drying_s));
     EXPECT_NEAR(residue[k], closed, n * std::ldexp(closed, -23)) << k;
   }
 }
@@ -101,9 +107,9 @@ TEST(TrailThenBlend, GivesTheBytesOfTheTrailsPassThenTheBlends) {
   const std::size_t n = std::size_t(w) * h;
   Scene scene;
   scene.domain = Domain{w, h, 4.8, 3.2};
-  scene.optics = OpticsParams{};
-  scene.optics->falloff = true;
-  scene.trail = TrailParams{};
+  scene.effects.set(OpticsParams{});
+  scene.effects.get<OpticsParams>().falloff = true;
+  scene.effects.set(TrailParams{});
   const Image tissue = procedural_tissue(w, h, 5);
   const std::vector<float> tables = optics_tables();
   std::vector<float> film(n), stain(n), residue(n);
@@ -119,8 +125,8 @@ TEST(TrailThenBlend, GivesTheBytesOfTheTrailsPassThenTheBlends) {
     std::vector<std::uint8_t> frame;
   } apart{residue, std::vector<std::uint8_t>(4 * n)}, together = apart;
   for (Result* r : {&apart, &together}) {
-    TrailPixel trail{film.data(), r->residue.data(), float(scene.trail->residue),
-                     trail_decay_per_frame(*scene.trail, scene.frame_rate_hz), scene.domain.grid()};
+    TrailPixel trail{film.data(), r->residue.data(), float(scene.effects.get<TrailParams>().residue),
+                     trail_decay_per_frame(scene.effects.get<TrailParams>(), scene.frame_rate_hz), scene.domain.grid()};
     sweep_trail(trail, path.data(), path, 1, 0.4);
     const BlendPixel blend = blend_work(scene, tables.data(), tissue.rgba.data(), stain.data(), film.data(),
                                         r->residue.data(), r->frame.data());
@@ -156,10 +162,10 @@ TEST(TrailStage, ASceneWithoutTrailsHasNoneOfTheirCost) {
   Scene scene;
   scene.domain = Domain{16, 16, 4.0, 4.0};
   scene.tissue = procedural_tissue(16, 16, 1);
-  scene.particles = ParticleParams{};
-  scene.particles->capacity = 64;
+  scene.effects.set(ParticleParams{});
+  scene.effects.get<ParticleParams>().capacity = 64;
   Simulation without(scene, kCpu);
-  scene.trail = TrailParams{};
+  scene.effects.set(TrailParams{});
   Simulation with(scene, kCpu);
   for (int k = 0; k < 3; ++k) without.step(), with.step();
   EXPECT_EQ(without.backend().launches("trail"), 0u);

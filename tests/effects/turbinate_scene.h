@@ -4,11 +4,12 @@
 #include <memory>
 #include <utility>
 
+#include "core/effects/particles/particle_model.h"
 #include "core/effects/surface/surface_stage.h"
 #include "core/io/mesh_obj.h"
 #include "core/mesh/surface_bake.h"
-#include "core/scene/scene.h"
 #include "core/runtime/tissue.h"
+#include "core/scene/scene.h"
 #include "tests/test_paths.h"
 
 namespace bleedsim::test {
@@ -19,7 +20,7 @@ inline SurfaceMaps lay_on_turbinate(Scene& scene, const Domain& domain) {
   scene.domain = domain;
   scene.tissue = procedural_tissue(domain.width_px, domain.height_px, 5);
   TissueMesh mesh = load_tissue_mesh(source_dir() + "/scenarios/meshes/turbinate.obj");
-  SurfaceMaps maps = bake_surface_maps(mesh, texture_panel(scene.domain), scene.device_gravity_mm_s2());
+  SurfaceMaps maps = bake_surface_maps(mesh, texture_panel(scene.domain), device_gravity_mm_s2(scene));
   scene.mesh = std::make_shared<const MeshSurface>(std::move(mesh));
   return maps;
 }

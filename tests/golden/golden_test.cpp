@@ -7,9 +7,9 @@
 #include <optional>
 #include <sstream>
 
-#include "core/simulation/frame_hash.h"
-#include "core/runtime/hash.h"
 #include "core/io/scenario.h"
+#include "core/runtime/hash.h"
+#include "core/simulation/frame_hash.h"
 #include "tests/golden/frame_diff.h"
 #include "tests/golden/golden.h"
 #include "tests/test_paths.h"

@@ -5,8 +5,8 @@
 #include <exception>
 #include <filesystem>
 
-#include "core/simulation/frame_hash.h"
 #include "core/io/scenario.h"
+#include "core/simulation/frame_hash.h"
 #include "tests/golden/golden.h"
 
 int main(int argc, char** argv) {

@@ -12,7 +12,9 @@ import json
 import math
 import subprocess
 
-TABLES = ("scene", "tissue", "spread", "particles", "blur", "trail", "optics", "haptics", "vessels", "pulse", "suction", "contact")
+# The tables `bleedsim params --json` lists that are not one table of defaults a scene fills in: the
+# [[cut]] and [[tip]] lists (a cut is filled by fill_cut), the view and the output.
+NOT_FILLED = ("cut", "tip", "view", "output")
 
 
 def load_params(bleedsim):
@@ -28,7 +30,7 @@ def defaults(params, table):
 
 def read_scenario(parsed, params):
     """The parsed TOML (a dict), with every declared table's and every cut's defaults filled in."""
-    written = {table: set(parsed[table]) for table in TABLES if table in parsed}
+    written = {table: set(parsed[table]) for table in params if table not in NOT_FILLED and table in parsed}
     scenario = dict(parsed)
     scenario.setdefault("tissue", {})   # every scene has a tissue: the flat panel unless it names a mesh
     written.setdefault("tissue", set())

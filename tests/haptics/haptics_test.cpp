@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/effects/spread/spread_params.h"
 #include "core/haptics/haptics.h"
 #include "tests/runtime/scenes_in_code.h"
 
@@ -125,8 +126,8 @@ TEST(HapticCuts, AStrokeCutsAtOnceThenEverySpacingAlongThePath) {
     EXPECT_NEAR(cuts[i].x_mm, 3.0 + double(i), 1e-9);  // panel x = 8 + device x
     EXPECT_NEAR(cuts[i].y_mm, 5.0, 1e-12);             // panel y = 6 − device y
     EXPECT_DOUBLE_EQ(cuts[i].start_s, 0.004 * double(i));  // tick 4i at 4i ms
-    EXPECT_EQ(cuts[i].radius_mm, scene.spread->radius_mm);  // the scene's wound
-    EXPECT_EQ(cuts[i].growth_per_s, scene.spread->growth_per_s);
+    EXPECT_EQ(cuts[i].radius_mm, scene.effects.get<SpreadParams>().radius_mm);  // the scene's wound
+    EXPECT_EQ(cuts[i].growth_per_s, scene.effects.get<SpreadParams>().growth_per_s);
   }
 }
 

@@ -9,11 +9,11 @@
 #include <fstream>
 #include <string>
 
-#include "core/simulation/frame_hash.h"
-#include "core/runtime/input_error.h"
-#include "core/io/scenario.h"
-#include "core/simulation/simulation.h"
 #include "core/haptics/trace_replay.h"
+#include "core/io/scenario.h"
+#include "core/runtime/input_error.h"
+#include "core/simulation/frame_hash.h"
+#include "core/simulation/simulation.h"
 
 namespace bleedsim {
 namespace {

@@ -12,6 +12,10 @@
 #include <string>
 #include <variant>
 
+#include "core/effects/blur/blur_params.h"
+#include "core/effects/cuts.h"
+#include "core/effects/particles/particle_params.h"
+#include "core/effects/spread/spread_params.h"
 #include "core/io/scenario.h"
 #include "core/runtime/message_text.h"
 #include "core/simulation/simulation.h"
@@ -111,7 +115,7 @@ TEST(ParamTables, EveryRangeIsRefusedAlikeInCodeAndInAFile) {
                                       "blur");
   expect_each_range_refused_both_ways(haptic_table(), HapticParams{}, scene,
                                       {kScene, "[haptics]", {{"trace", "\"" + trace_path() + "\""}}}, "haptics");
-  expect_each_range_refused_both_ways(cut_table(), scene.cut_at(8, 6, 0), scene,
+  expect_each_range_refused_both_ways(cut_table(), cut_at(scene, 8, 6, 0), scene,
                                       {kScene + "[spread]\n", "[[cut]]", {{"x_mm", "8.0"}, {"y_mm", "6.0"}}}, "cut[0]");
   expect_each_range_refused_both_ways(output_table(), OutputSpec{}, scene, {kScene, "[output]", {}}, "output");
 }
@@ -119,9 +123,9 @@ TEST(ParamTables, EveryRangeIsRefusedAlikeInCodeAndInAFile) {
 TEST(ParamTables, ARuleRefusesAlikeInCodeAndInAFile) {
   // fade_s ≤ lifetime_s, a rule between two keys of [particles].
   Scene scene = test::scene_in_code(true);
-  scene.particles = ParticleParams{};
-  scene.particles->lifetime_s = 5;
-  scene.particles->fade_s = 6;
+  scene.effects.set(ParticleParams{});
+  scene.effects.get<ParticleParams>().lifetime_s = 5;
+  scene.effects.get<ParticleParams>().fade_s = 6;
   try {
     Simulation sim(scene);
     ADD_FAILURE() << "a fade longer than the lifetime was accepted in code";
@@ -134,8 +138,8 @@ TEST(ParamTables, ARuleRefusesAlikeInCodeAndInAFile) {
 
 TEST(ParamTables, ZeroMeansTheDiameterForTheCellAndTheSplat) {
   const Scenario s = parse_scenario(kScene + "[particles]\ncell_mm = 0\nsplat_radius_mm = 0\n", test::kPath);
-  EXPECT_EQ(s.scene.particles->cell_mm, 0.0);
-  EXPECT_EQ(s.scene.particles->splat_radius_mm, 0.0);
+  EXPECT_EQ(s.scene.effects.get<ParticleParams>().cell_mm, 0.0);
+  EXPECT_EQ(s.scene.effects.get<ParticleParams>().splat_radius_mm, 0.0);
 }
 
 TEST(ParamTables, TheDocumentedDefaultsAreTheStructsOwn) {

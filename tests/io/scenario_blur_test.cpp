@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "core/effects/blur/blur_params.h"
 #include "core/io/scenario.h"
 #include "tests/io/scenario_text.h"
 
@@ -25,19 +26,19 @@ std::string blur_with(const std::string& lines) { return kBlurBase + lines; }
 
 TEST(ScenarioBlur, AcceptsTheBaseTextThatTheBlurTestsBreak) {
   ASSERT_EQ(int(lines_of(kBlurBase).size()), kBlurEnd - 1);
-  EXPECT_TRUE(parse_scenario(kBlurBase, kPath).scene.blur.has_value());
+  EXPECT_TRUE(parse_scenario(kBlurBase, kPath).scene.effects.has<BlurParams>());
   // Without [blur] a scene with particles does not blur its film.
-  EXPECT_FALSE(parse_scenario(kParticleBase, kPath).scene.blur.has_value());
+  EXPECT_FALSE(parse_scenario(kParticleBase, kPath).scene.effects.has<BlurParams>());
 }
 
 TEST(ScenarioBlur, AnEmptyTableTakesTheDocumentedDefaults) {
   const Scenario scenario = parse_scenario(kBlurBase, kPath);
   const Scene& scene = scenario.scene;
-  ASSERT_TRUE(scene.blur.has_value());
+  ASSERT_TRUE(scene.effects.has<BlurParams>());
   // The values docs/scenario-format.md lists, written out so that a changed default shows here.
-  EXPECT_EQ(scene.blur->downsample, 2);
-  EXPECT_EQ(scene.blur->radius_px, 4);
-  EXPECT_EQ(scene.blur->sigma_px, 2.0);  // max(0.5, radius_px / 2)
+  EXPECT_EQ(scene.effects.get<BlurParams>().downsample, 2);
+  EXPECT_EQ(scene.effects.get<BlurParams>().radius_px, 4);
+  EXPECT_EQ(scene.effects.get<BlurParams>().sigma_px, 2.0);  // max(0.5, radius_px / 2)
   EXPECT_EQ(scenario.place_of("blur").line, kBlurHeader);
   EXPECT_TRUE(scenario.output.fields.empty());
 }
@@ -50,10 +51,10 @@ TEST(ScenarioBlur, ReadsEveryBlurKey) {
                                                "fields = [\"splat/thickness\", \"blur/thickness\"]\n"),  // 17
                                      kPath);
   const Scene& scene = scenario.scene;
-  ASSERT_TRUE(scene.blur.has_value());
-  EXPECT_EQ(scene.blur->downsample, 4);
-  EXPECT_EQ(scene.blur->radius_px, 7);
-  EXPECT_EQ(scene.blur->sigma_px, 3.25);
+  ASSERT_TRUE(scene.effects.has<BlurParams>());
+  EXPECT_EQ(scene.effects.get<BlurParams>().downsample, 4);
+  EXPECT_EQ(scene.effects.get<BlurParams>().radius_px, 7);
+  EXPECT_EQ(scene.effects.get<BlurParams>().sigma_px, 3.25);
   EXPECT_EQ(scenario.output.fields, (std::vector<std::string>{"splat/thickness", "blur/thickness"}));
   EXPECT_EQ(scenario.place_of("blur").line, kBlurHeader);
   EXPECT_EQ(scenario.place_of("blur.downsample").line, kBlurEnd);
@@ -64,17 +65,20 @@ TEST(ScenarioBlur, ReadsEveryBlurKey) {
 }
 
 TEST(ScenarioBlur, EveryAllowedValueAtTheEndsOfItsRangeIsAccepted) {
-  EXPECT_EQ(parse_scenario(blur_with("downsample = 1\n"), kPath).scene.blur->downsample, 1);
-  EXPECT_EQ(parse_scenario(blur_with("downsample = 2\n"), kPath).scene.blur->downsample, 2);
-  EXPECT_EQ(parse_scenario(blur_with("downsample = 4\n"), kPath).scene.blur->downsample, 4);
-  EXPECT_EQ(parse_scenario(blur_with("radius_px = 0\n"), kPath).scene.blur->radius_px, 0);
-  EXPECT_EQ(parse_scenario(blur_with("radius_px = 64\n"), kPath).scene.blur->radius_px, 64);
-  EXPECT_EQ(parse_scenario(blur_with("sigma_px = 64\n"), kPath).scene.blur->sigma_px, 64.0);  // an integer: a number
-  EXPECT_EQ(parse_scenario(blur_with("sigma_px = 1e-3\n"), kPath).scene.blur->sigma_px, 1e-3);
+  EXPECT_EQ(parse_scenario(blur_with("downsample = 1\n"), kPath).scene.effects.get<BlurParams>().downsample, 1);
+  EXPECT_EQ(parse_scenario(blur_with("downsample = 2\n"), kPath).scene.effects.get<BlurParams>().downsample, 2);
+  EXPECT_EQ(parse_scenario(blur_with("downsample = 4\n"), kPath).scene.effects.get<BlurParams>().downsample, 4);
+  EXPECT_EQ(parse_scenario(blur_with("radius_px = 0\n"), kPath).scene.effects.get<BlurParams>().radius_px, 0);
+  EXPECT_EQ(parse_scenario(blur_with("radius_px = 64\n"), kPath).scene.effects.get<BlurParams>().radius_px, 64);
+  EXPECT_EQ(parse_scenario(blur_with("sigma_px = 64\n"), kPath).scene.effects.get<BlurParams>().sigma_px,
+            64.0);  // an integer: a number
+  EXPECT_EQ(parse_scenario(blur_with("sigma_px = 1e-3\n"), kPath).scene.effects.get<BlurParams>().sigma_px, 1e-3);
 }
 
 TEST(ScenarioBlur, SigmaDefaultsToHalfTheRadiusButNotBelowHalfAPixel) {
-  const auto sigma = [](const std::string& lines) { return parse_scenario(blur_with(lines), kPath).scene.blur->sigma_px; };
+  const auto sigma = [](const std::string& lines) {
+    return parse_scenario(blur_with(lines), kPath).scene.effects.get<BlurParams>().sigma_px;
+  };
   EXPECT_EQ(sigma("radius_px = 10\n"), 5.0);
   EXPECT_EQ(sigma("radius_px = 3\n"), 1.5);
   EXPECT_EQ(sigma("radius_px = 64\n"), 32.0);
@@ -154,9 +158,9 @@ TEST(ScenarioBlur, MayBeWrittenBeforeItsParticles) {
       "y_mm = 6.0\n";
   const Scenario scenario = parse_scenario(text, kPath);
   const Scene& scene = scenario.scene;
-  ASSERT_TRUE(scene.blur.has_value());
-  EXPECT_EQ(scene.blur->radius_px, 6);
-  EXPECT_EQ(scene.blur->sigma_px, 3.0);
+  ASSERT_TRUE(scene.effects.has<BlurParams>());
+  EXPECT_EQ(scene.effects.get<BlurParams>().radius_px, 6);
+  EXPECT_EQ(scene.effects.get<BlurParams>().sigma_px, 3.0);
   EXPECT_EQ(scenario.place_of("blur").line, 7);
 }
 

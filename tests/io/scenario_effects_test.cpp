@@ -9,9 +9,11 @@
 #include <variant>
 #include <vector>
 
-#include "core/runtime/input_error.h"
 #include "core/effects/particles/particle_model.h"
+#include "core/effects/particles/particle_params.h"
+#include "core/effects/spread/spread_params.h"
 #include "core/io/scenario.h"
+#include "core/runtime/input_error.h"
 #include "tests/io/scenario_text.h"
 
 namespace bleedsim {
@@ -79,8 +81,8 @@ const std::string kFullParticles =
 TEST(ScenarioParticles, ReadsEveryParticleKey) {
   const Scenario scenario = parse_scenario(kFullParticles, kPath);
   const Scene& scene = scenario.scene;
-  ASSERT_TRUE(scene.particles.has_value());
-  const ParticleParams& p = *scene.particles;
+  ASSERT_TRUE(scene.effects.has<ParticleParams>());
+  const ParticleParams& p = scene.effects.get<ParticleParams>();
   EXPECT_EQ(p.capacity, 4096);
   EXPECT_EQ(p.diameter_mm, 0.25);
   EXPECT_EQ(p.cell_mm, 0.5);
@@ -108,7 +110,7 @@ TEST(ScenarioParticles, ReadsEveryParticleKey) {
   EXPECT_EQ(p.pinning_mm3_s2, 12.5);
   EXPECT_EQ(p.yield_mm2_s2, 7.0);
   EXPECT_EQ(p.birth_s, 0.05);
-  EXPECT_FALSE(scene.spread.has_value());  // [particles] declares the particle flow alone
+  EXPECT_FALSE(scene.effects.has<SpreadParams>());  // [particles] declares the particle flow alone
 
   ASSERT_EQ(scene.cuts.size(), 2u);
   EXPECT_EQ(scene.cuts[0].wound_mm, 1.0);               // a cut stands for 1 mm of wound unless it says
@@ -135,8 +137,8 @@ TEST(ScenarioParticles, ReadsEveryParticleKey) {
 
 TEST(ScenarioParticles, AnEmptyTableTakesTheTablesDefaults) {
   const Scenario scenario = parse_scenario(kParticleBase, kPath);
-  ASSERT_TRUE(scenario.scene.particles.has_value());
-  const ParticleParams& p = *scenario.scene.particles;
+  ASSERT_TRUE(scenario.scene.effects.has<ParticleParams>());
+  const ParticleParams& p = scenario.scene.effects.get<ParticleParams>();
   const ParticleParams defaults;
   // Every member the table names holds the struct's own default (what `bleedsim params` shows).
   int compared = 0;
@@ -165,8 +167,8 @@ TEST(ScenarioParticles, AnEmptyTableTakesTheTablesDefaults) {
 TEST(ScenarioParticles, FadeDefaultsToTheLifetimeWhenTheLifetimeIsShorter) {
   const Scenario scenario = parse_scenario(particles_with("lifetime_s = 0.5\n"), kPath);
   const Scene& scene = scenario.scene;
-  EXPECT_EQ(scene.particles->lifetime_s, 0.5);
-  EXPECT_EQ(scene.particles->fade_s, 0.5);
+  EXPECT_EQ(scene.effects.get<ParticleParams>().lifetime_s, 0.5);
+  EXPECT_EQ(scene.effects.get<ParticleParams>().fade_s, 0.5);
 }
 
 TEST(ScenarioParticles, EachKeyOutOfRangeIsRefusedAtItsLine) {
@@ -223,7 +225,9 @@ TEST(ScenarioParticles, EachKeyOutOfRangeIsRefusedAtItsLine) {
 TEST(ScenarioParticles, FadeLongerThanTheLifetime) {
   EXPECT_TRUE(refused_at(particles_with("lifetime_s = 5\nfade_s = 6\n"), kParticlesEnd + 1, "particles.fade_s",
                          "must be at most lifetime_s, 5 s (got 6)"));
-  EXPECT_EQ(parse_scenario(particles_with("lifetime_s = 5\nfade_s = 5\n"), kPath).scene.particles->fade_s, 5.0);
+  EXPECT_EQ(
+      parse_scenario(particles_with("lifetime_s = 5\nfade_s = 5\n"), kPath).scene.effects.get<ParticleParams>().fade_s,
+      5.0);
 }
 
 TEST(ScenarioParticles, CellSmallerThanTheRange) {
@@ -232,7 +236,10 @@ TEST(ScenarioParticles, CellSmallerThanTheRange) {
                          "must be 0 (the range) or at least the range, diameter_mm × (1 + cohesion_range) = 0.65 mm "
                          "(got 0.6)"));
   // A cell as large as the range is the smallest allowed.
-  EXPECT_EQ(parse_scenario(particles_with("diameter_mm = 0.5\ncell_mm = 0.65\n"), kPath).scene.particles->cell_mm, 0.65);
+  EXPECT_EQ(parse_scenario(particles_with("diameter_mm = 0.5\ncell_mm = 0.65\n"), kPath)
+                .scene.effects.get<ParticleParams>()
+                .cell_mm,
+            0.65);
 }
 
 TEST(ScenarioParticles, VectorsNeedTwoFiniteNumbersAndNameTheBadComponent) {
@@ -289,10 +296,10 @@ TEST(ScenarioParticles, SubStepsPastTheStabilityLimitAreRefusedWithTheFewestInsi
                          "use at least " + std::to_string(limit.fewest) + " sub-steps per frame"));
   // The fewest inside the limit are accepted, and substeps = 0 (the default) takes them.
   const std::string fewest = particles_with("substeps = " + std::to_string(limit.fewest) + "\n");
-  EXPECT_EQ(parse_scenario(fewest, kPath).scene.particles->substeps, limit.fewest);
+  EXPECT_EQ(parse_scenario(fewest, kPath).scene.effects.get<ParticleParams>().substeps, limit.fewest);
   const Scene scene = parse_scenario(kParticleBase, kPath).scene;
-  EXPECT_EQ(particle_mechanics(*scene.particles, scene.domain, 30.0).substeps, limit.fewest);
-  EXPECT_NEAR(particle_mechanics(*scene.particles, scene.domain, 30.0).step_limit_s, limit.dt_s, 1e-12);
+  EXPECT_EQ(resolve_particles(scene.effects.get<ParticleParams>(), scene).mechanics.substeps, limit.fewest);
+  EXPECT_NEAR(resolve_particles(scene.effects.get<ParticleParams>(), scene).mechanics.step_limit_s, limit.dt_s, 1e-12);
 }
 
 TEST(ScenarioParticles, TheSpeedLimitMustKeepAStepUnderHalfADiameter) {

@@ -14,8 +14,11 @@
 #include <string>
 #include <vector>
 
-#include "core/runtime/input_error.h"
+#include "core/effects/blur/blur_params.h"
+#include "core/effects/particles/particle_params.h"
+#include "core/effects/spread/spread_params.h"
 #include "core/io/scenario.h"
+#include "core/runtime/input_error.h"
 #include "core/runtime/tissue.h"
 #include "tests/io/scenario_text.h"
 #include "tests/test_paths.h"
@@ -111,9 +114,9 @@ TEST(ScenarioParse, ReadsEverySceneField) {
   EXPECT_EQ(scene.frame_time_s(0), 1.0 / 25.0);  // the end of frame 0's period
   EXPECT_EQ(scene.seed, 42u);
 
-  ASSERT_TRUE(scene.spread.has_value());
-  EXPECT_EQ(scene.spread->radius_mm, 3.5);
-  EXPECT_EQ(scene.spread->growth_per_s, 0.25);
+  ASSERT_TRUE(scene.effects.has<SpreadParams>());
+  EXPECT_EQ(scene.effects.get<SpreadParams>().radius_mm, 3.5);
+  EXPECT_EQ(scene.effects.get<SpreadParams>().growth_per_s, 0.25);
 
   ASSERT_EQ(scene.cuts.size(), 2u);
   EXPECT_EQ(scene.cuts[0].x_mm, 5.0);
@@ -178,9 +181,9 @@ TEST(ScenarioParse, FillsInDefaultsWhenOptionalTablesAreAbsent) {
   EXPECT_EQ(scene.frame_rate_hz, 30.0);
   EXPECT_EQ(scene.frame_count(), 30);
   EXPECT_EQ(scene.seed, 0u);
-  EXPECT_FALSE(scene.spread.has_value());  // no effect declared, so none is run
-  EXPECT_FALSE(scene.particles.has_value());
-  EXPECT_FALSE(scene.blur.has_value());
+  EXPECT_FALSE(scene.effects.has<SpreadParams>());  // no effect declared, so none is run
+  EXPECT_FALSE(scene.effects.has<ParticleParams>());
+  EXPECT_FALSE(scene.effects.has<BlurParams>());
   EXPECT_EQ(scenario.output.dir, "out/minimal-probe");
   EXPECT_TRUE(scenario.output.hdf5);
   EXPECT_EQ(scenario.output.png_every, 0);
@@ -239,8 +242,11 @@ TEST(ScenarioBadInput, UnknownKeyFarFromAnyListsTheKnownOnes) {
 }
 
 TEST(ScenarioBadInput, UnknownTopLevelTable) {
-  EXPECT_TRUE(refused_at(kBase + "[lighting]\nlamps = 3\n", kEnd, "lighting",
-                         "unknown table (known here: scene tissue spread particles blur trail optics pulse vessels haptics suction contact cut tip view output)"));
+  // Every table the reader knows, in scenario_tables()'s order: the list of effects among them.
+  std::string known;
+  for (const TableView& table : scenario_tables()) known += " " + table.name;
+  EXPECT_TRUE(
+      refused_at(kBase + "[lighting]\nlamps = 3\n", kEnd, "lighting", "unknown table (known here:" + known + ")"));
   EXPECT_TRUE(refused_at(kBase + "[sprad]\n", kEnd, "sprad", "unknown table; did you mean 'spread'?"));
   EXPECT_TRUE(refused_at(kBase + "[particle]\n", kEnd, "particle", "unknown table; did you mean 'particles'?"));
   EXPECT_TRUE(refused_at(kBase + "[blurr]\n", kEnd, "blurr", "unknown table; did you mean 'blur'?"));

@@ -5,8 +5,8 @@
 
 #include <filesystem>
 
-#include "core/simulation/frame_hash.h"
 #include "core/io/scenario.h"
+#include "core/simulation/frame_hash.h"
 #include "tests/test_paths.h"
 
 namespace bleedsim {

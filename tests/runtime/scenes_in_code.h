@@ -1,7 +1,9 @@
 #pragma once
 // Scenes built in code, as a host simulator embedding bleedsim would build them.
-#include "core/scene/scene.h"
+#include "core/effects/cuts.h"
+#include "core/effects/spread/spread_params.h"
 #include "core/runtime/tissue.h"
+#include "core/scene/scene.h"
 
 namespace bleedsim::test {
 
@@ -14,8 +16,8 @@ inline Scene scene_in_code(bool with_spread) {
   scene.frame_rate_hz = 30.0;
   scene.tissue = procedural_tissue(64, 48, 5);
   scene.tissue_source = "procedural";
-  if (with_spread) scene.spread = SpreadParams{3.0, 1.5};
-  scene.cuts.push_back(scene.cut_at(8.125, 6.125, 0.0));  // the centre of pixel (32, 24)
+  if (with_spread) scene.effects.set(SpreadParams{3.0, 1.5});
+  scene.cuts.push_back(cut_at(scene, 8.125, 6.125, 0.0));  // the centre of pixel (32, 24)
   return scene;
 }
 

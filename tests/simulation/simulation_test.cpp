@@ -6,6 +6,9 @@
 #include <cstring>
 
 #include "core/effects/blend/blend_stage.h"
+#include "core/effects/blend/optics_params.h"
+#include "core/effects/cuts.h"
+#include "core/physics/optics_tables.h"
 #include "core/simulation/simulation.h"
 #include "tests/runtime/scenes_in_code.h"
 
@@ -47,7 +50,7 @@ TEST(Simulation, ACutFedAtRunTimeStainsFromItsStartOn) {
   Simulation sim(test::scene_in_code(true), kCpu);
   const Scene& scene = sim.scene();
   // The centre of pixel (8, 8): (8.5 · 0.25, 8.5 · 0.25) mm, far from the scene's own cut.
-  sim.add_cut(scene.cut_at(2.125, 2.125, 0.2));
+  sim.add_cut(cut_at(scene, 2.125, 2.125, 0.2));
   ASSERT_EQ(sim.cuts().size(), 2u);
   for (int k = 0; k < 6; ++k) sim.step();  // t = 0.2: starts now, amplitude 0
   EXPECT_EQ(stain_at(sim, 8, 8), 0.0f);
@@ -91,7 +94,7 @@ TEST(Simulation, GivesFieldsInPlaceOnTheBackend) {
 
 TEST(Simulation, RefusesBadCutsAndUnknownFields) {
   Simulation sim(test::scene_in_code(true), kCpu);
-  Cut cut = sim.scene().cut_at(1.0, 1.0, 0.0);
+  Cut cut = cut_at(sim.scene(), 1.0, 1.0, 0.0);
   cut.radius_mm = 0.0;
   EXPECT_THROW(sim.add_cut(cut), std::invalid_argument);
   cut.radius_mm = NAN;

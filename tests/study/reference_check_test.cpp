@@ -19,9 +19,11 @@
 
 #include <string>
 
+#include "core/effects/cuts.h"
+#include "core/effects/particles/particle_params.h"
+#include "core/runtime/tissue.h"
 #include "core/study/study.h"
 #include "core/study/study_analysis.h"
-#include "core/runtime/tissue.h"
 
 namespace bleedsim {
 namespace {
@@ -37,9 +39,9 @@ Scene pool_scene() {
   scene.seed = 1;
   scene.tissue = procedural_tissue(60, 40, 1);
   scene.tissue_source = "procedural";
-  scene.particles = ParticleParams{};
-  scene.particles->design_depth_mm = 2.0;
-  Cut cut = scene.cut_at(3.0, 3.0, 0.0);
+  scene.effects.set(ParticleParams{});
+  scene.effects.get<ParticleParams>().design_depth_mm = 2.0;
+  Cut cut = cut_at(scene, 3.0, 3.0, 0.0);
   cut.bleed_s = 0.5;
   scene.cuts.push_back(cut);
   return scene;

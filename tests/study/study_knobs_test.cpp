@@ -8,7 +8,11 @@
 #include <set>
 #include <string>
 
+#include "core/effects/blur/blur_params.h"
 #include "core/effects/particles/particle_model.h"
+#include "core/effects/particles/particle_params.h"
+#include "core/effects/vessels/vessel_params.h"
+#include "core/simulation/scene_check.h"
 #include "core/study/study_knobs.h"
 #include "tests/runtime/scenes_in_code.h"
 
@@ -18,16 +22,16 @@ namespace {
 // The spread, the particles (their defaults: sub-steps and pile depth left to the model) and the blur.
 Scene full_scene() {
   Scene scene = test::scene_in_code(true);
-  scene.particles = ParticleParams{};
-  scene.blur = BlurParams{};
+  scene.effects.set(ParticleParams{});
+  scene.effects.set(BlurParams{});
   return scene;
 }
 
 // What a knob may mean, each a number a scene has.
 std::map<std::string, double> meanings(const Scene& s) {
-  const ParticleParams& p = *s.particles;
-  const ParticleMechanics m = particle_mechanics(p, s.domain, s.frame_rate_hz);
-  const BlurParams& b = *s.blur;
+  const ParticleParams& p = s.effects.get<ParticleParams>();
+  const ParticleMechanics m = resolve_particles(p, s).mechanics;
+  const BlurParams& b = s.effects.get<BlurParams>();
   return {{"time step", m.dt_s},
           {"compression", p.compression},
           {"pile depth", m.depth_mm},
@@ -36,7 +40,7 @@ std::map<std::string, double> meanings(const Scene& s) {
           {"film thickness", m.film_mm},
           {"surface tension", p.cohesion_mm3_s2},
           {"grip", p.pinning_mm3_s2 + p.yield_mm2_s2},
-          {"largest drop held", critical_drop(p, s.domain, s.frame_rate_hz).radius_mm},
+          {"largest drop held", resolve_particles(p, s).drop.radius_mm},
           {"blur width on the panel", b.sigma_px * b.downsample * s.domain.width_mm / s.domain.width_px},
           {"blur taps per sigma", b.radius_px / b.sigma_px},
           {"blur downsampling", b.downsample},
@@ -74,9 +78,9 @@ TEST(StudyKnobs, AContactTooStiffForTheTimeStepIsRefusedNotSoftened) {
   // A quarter of the compression is four times the stiffness: the base's fewest sub-steps no longer
   // hold it, and the scene is refused at particles.substeps with the step it has kept.
   Scene s = full_scene();
-  const double dt = particle_mechanics(*s.particles, s.domain, s.frame_rate_hz).dt_s;
-  find_knob("compression")->apply(s, s.particles->compression / 4);
-  EXPECT_EQ(particle_mechanics(*s.particles, s.domain, s.frame_rate_hz).dt_s, dt);
+  const double dt = resolve_particles(s).mechanics.dt_s;
+  find_knob("compression")->apply(s, s.effects.get<ParticleParams>().compression / 4);
+  EXPECT_EQ(resolve_particles(s).mechanics.dt_s, dt);
   const ParamProblem problem = scene_problem(s);
   EXPECT_NE(problem.text().find("particles.substeps: a sub-step of "), std::string::npos) << problem.text();
   // Particles half the size: four times the stiffness at the same compression, refused alike.
@@ -89,7 +93,7 @@ TEST(StudyKnobs, ResolutionResamplesAVesselMapReadFromAFile) {
   // By area means: a constant map stays that constant. (The procedural tissue and vessels are drawn
   // again from the scene's own seed: StudySeeds.MoveThePhysicsAndLeaveTheTissueAlone.)
   Scene png = full_scene();
-  png.vessels = VesselParams{"map.png"};
+  png.effects.set(VesselParams{"map.png"});
   png.vessel_density.assign(64 * 48, 0.375f);
   find_knob("resolution")->apply(png, 0.25);
   EXPECT_EQ(png.vessel_density, std::vector<float>(16 * 12, 0.375f));

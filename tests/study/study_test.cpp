@@ -10,8 +10,13 @@
 #include <sstream>
 #include <string>
 
+#include "core/effects/blur/blur_params.h"
+#include "core/effects/cuts.h"
 #include "core/effects/particles/particle_model.h"
+#include "core/effects/particles/particle_params.h"
+#include "core/effects/vessels/vessel_params.h"
 #include "core/runtime/input_error.h"
+#include "core/simulation/scene_check.h"
 #include "core/study/job_record.h"
 #include "core/study/study.h"
 #include "core/study/study_analysis.h"
@@ -25,10 +30,10 @@ namespace {
 // The in-code scene (64 × 48 px, 16 × 12 mm) with the spread, the particles and the blur, 0.1 s.
 Scene small_scene() {
   Scene scene = test::scene_in_code(true);
-  scene.particles = ParticleParams{};
-  scene.particles->capacity = 512;
-  scene.blur = BlurParams{};
-  scene.cuts = {scene.cut_at(8.0, 4.0, 0.0)};
+  scene.effects.set(ParticleParams{});
+  scene.effects.get<ParticleParams>().capacity = 512;
+  scene.effects.set(BlurParams{});
+  scene.cuts = {cut_at(scene, 8.0, 4.0, 0.0)};
   scene.duration_s = 0.1;
   return scene;
 }
@@ -77,11 +82,12 @@ TEST(StudySettings, LaddersMeetAtTheReference) {
   EXPECT_EQ(study.snapshot_frames(), (std::vector<int>{0, 1, 2}));
   // A coarser compression level holds the reference's resolution (and time step); the refinement
   // of resolution holds the reference's compression.
-  EXPECT_EQ(study.scene_for(2, 0).particles->compression, 0.08);
+  EXPECT_EQ(study.scene_for(2, 0).effects.get<ParticleParams>().compression, 0.08);
   EXPECT_EQ(study.scene_for(2, 0).domain.width_px, 64);
   EXPECT_EQ(study.scene_for(6, 0).domain.width_px, 128);
-  EXPECT_EQ(study.scene_for(6, 0).particles->compression, 0.02);
-  EXPECT_EQ(study.scene_for(2, 0).particles->substeps, study.scene_for(0, 0).particles->substeps);
+  EXPECT_EQ(study.scene_for(6, 0).effects.get<ParticleParams>().compression, 0.02);
+  EXPECT_EQ(study.scene_for(2, 0).effects.get<ParticleParams>().substeps,
+            study.scene_for(0, 0).effects.get<ParticleParams>().substeps);
 }
 
 TEST(StudySettings, TheDefaultTimeStepHoldsTheStiffestContactTheStudyRuns) {
@@ -110,13 +116,13 @@ TEST(StudySeeds, MoveThePhysicsAndLeaveTheTissueAlone) {
   Scene scene = small_scene();
   scene.seed = 41;
   scene.tissue = procedural_tissue(64, 48, 41);
-  scene.vessels = VesselParams{};
+  scene.effects.set(VesselParams{});
   scene.vessel_density = procedural_vessel_density(64, 48, 41);
   const Study study(scene, spec_of({{find_knob("resolution"), {0.5, 1}}}, 4));
   for (int i = 0; i < 4; ++i) {
     const Scene run = study.scene_for(0, i);
     EXPECT_EQ(run.seed, 41u + std::uint64_t(i));
-    EXPECT_EQ(make_particle_model(run).seed, 41u + std::uint64_t(i));
+    EXPECT_EQ(resolve_particles(run).model.seed, 41u + std::uint64_t(i));
     EXPECT_EQ(run.tissue.rgba, scene.tissue.rgba) << i;
     EXPECT_EQ(run.vessel_density, scene.vessel_density) << i;
     // At half the resolution, the scene's own tissue and vessels drawn again from its own seed.
@@ -144,7 +150,7 @@ TEST(StudyBadInput, IsRefusedBeforeAnythingRuns) {
                 .find("--knob resolution: is given twice"),
             std::string::npos);
   Scene no_blur = scene;
-  no_blur.blur.reset();
+  no_blur.effects.drop<BlurParams>();
   EXPECT_NE(refusal(no_blur, spec_of({{find_knob("blur_radius"), {2}}})).find("--knob blur_radius: this scene has nothing it changes"),
             std::string::npos);
   StudySpec short_run = spec_of({{find_knob("resolution"), {1}}});

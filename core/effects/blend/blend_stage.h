@@ -1,30 +1,16 @@
 #pragma once
+// The frame: the blood's fields composited over the tissue (docs/optics.md). What the blend stage
+// (blend_stage.cpp, with the optics' row) reads and makes, which the study and the tests ask too.
 #include <cstddef>
+#include <cstdint>
 #include <string>
-#include <vector>
 
 #include "core/effects/blend/optics_params.h"
-#include "core/effects/stage.h"
 #include "core/physics/blend.h"
+#include "core/runtime/backend.h"
+#include "core/scene/scene.h"
 
 namespace bleedsim {
-
-// (tissue, spread/stain, the film: blur/thickness or splat/thickness, trail/residue) => frame
-// Each frame: the blood's fields composited over the tissue into the RGBA8 frame, in linear light,
-// lit by the endoscope's headlight in a scene with [optics]. Every scene has it: without effects
-// the frame is the bare tissue.
-class BlendStage final : public Stage {
- public:
-  BlendStage(const StageKind& kind, const Scene& scene, State& state, Backend& backend);
-  static MemoryParts memory_for(const Scene& scene);
-  void run(const Scene& scene, State& state, Backend& backend) override;
-
- private:
-  Buffer tissue_;  // the scene's tissue, uploaded once
-  Buffer tables_;  // optics_tables(), uploaded once
-  Buffer fixed_light_;  // with [optics]: the headlight's fixed light, made once
-  BlendPixel work_{};
-};
 
 // What the blend lays over the tissue, by field name, or null where the scene has none of it: the
 // stain, spread/stain with [spread]; the film of blood, blur/thickness with [blur], else
@@ -32,15 +18,6 @@ class BlendStage final : public Stage {
 const char* blend_stain_field(const Scene& scene);
 const char* blend_film_field(const Scene& scene);
 const char* blend_residue_field(const Scene& scene);
-
-// The tables the blend reads, one after another, made on the host in double and rounded once to
-// float: sRGB's 256 bytes in linear light; the 255 boundaries between them (the linear value of
-// code (k + ½)/255); exp(−k / kTransmissionStepsPerUnit) for the Beer–Lambert transmission; the
-// encoding's bucket starts (SrgbTables).
-constexpr std::size_t kOpticsTableFloats = kSrgbBytes + (kSrgbBytes - 1) + kTransmissionEntries + kSrgbBuckets;
-// The sRGB tables within optics_tables() at `tables`.
-SrgbTables srgb_tables(const float* tables);
-std::vector<float> optics_tables();
 
 // The blood as an absorber, and the headlight, for a scene's optics (the defaults without [optics]).
 BloodOptics blood_optics(const OpticsParams& optics);

@@ -3,8 +3,8 @@
 // by the particle stage and the benchmarks, so both run exactly the arrays a scene runs.
 #include <cstddef>
 
-#include "core/runtime/backend.h"
 #include "core/physics/particles.h"
+#include "core/runtime/backend.h"
 
 namespace bleedsim {
 

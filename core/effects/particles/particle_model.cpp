@@ -5,14 +5,13 @@
 
 #include "core/effects/surface/surface_stage.h"
 #include "core/runtime/count.h"
+#include "core/runtime/message_text.h"
 
 namespace bleedsim {
 namespace {
 
 // At least one; a panel that holds more cells than 2^64 is uncountable, and refused.
-Count cells_along(double panel_mm, double cell_mm) {
-  return std::max(Count(1), Count::ceil_of(panel_mm / cell_mm));
-}
+Count cells_along(double panel_mm, double cell_mm) { return std::max(Count(1), Count::ceil_of(panel_mm / cell_mm)); }
 
 // Only ever for a scene whose lifetime check passed: at most 2e9 steps.
 std::uint32_t steps_in(double seconds, double steps_per_s) {
@@ -47,9 +46,12 @@ double least_stretch(const Scene& scene) {
   return scene.mesh ? panel_stretch(scene.mesh->mesh(), texture_panel(scene.domain)).least : 1.0;
 }
 
-}  // namespace
-
-ParticleMechanics particle_mechanics(const ParticleParams& p, const Domain& domain, double frame_rate_hz) {
+// What the parameters make of the contact, the film and the time step on this panel at this frame
+// rate: the resolution's one computation of them (resolve_particles, and the limits' checks of
+// parameters not yet in a scene).
+ParticleMechanics particle_mechanics(const ParticleParams& p, const Scene& scene) {
+  const Domain& domain = scene.domain;
+  const double frame_rate_hz = scene.frame_rate_hz;
   ParticleMechanics m{};
   const double d = p.diameter_mm, v = p.particle_volume_mm3;
   m.range_mm = d * (1.0 + p.cohesion_range);
@@ -68,12 +70,89 @@ ParticleMechanics particle_mechanics(const ParticleParams& p, const Domain& doma
   return m;
 }
 
-DropLimit critical_drop(const ParticleParams& p, const Domain& domain, double frame_rate_hz) {
-  const ParticleMechanics m = particle_mechanics(p, domain, frame_rate_hz);
+std::string number(double v) { return format_significant(v, 4); }
+
+// Cells of the collision grid over a width × height mm panel: the check refuses the grids too large
+// to key before anything narrows the count.
+Count particle_grid_cells(double cell_mm, double width_mm, double height_mm) {
+  return cells_along(width_mm, cell_mm) * cells_along(height_mm, cell_mm);
+}
+
+// Steps in a particle's lifetime, before rounding (the check refuses more than can be counted).
+double lifetime_steps(const ParticleParams& p, double frame_rate_hz, int substeps) {
+  return p.lifetime_s * frame_rate_hz * double(substeps);
+}
+
+// The largest drop the mucosa holds against gravity (DropLimit).
+DropLimit critical_drop(const ParticleParams& p, const ParticleMechanics& m) {
   const double pull = std::hypot(p.gravity_x_mm_s2, p.gravity_y_mm_s2) - m.yield_mm_s2;
   if (pull <= 0) return {true, 0, 0};
   const double radius = 2.0 * p.pinning_mm3_s2 / (m.film_mm * pull);
   return {false, radius, m.film_mm * M_PI * radius * radius};
+}
+
+}  // namespace
+
+ParamProblem cell_holds_the_range(const ParticleParams& p, const Scene& scene) {
+  const double range = particle_mechanics(p, scene).range_mm;
+  if (p.cell_mm == 0 || p.cell_mm >= range) return {};
+  return {"cell_mm", "must be 0 (the range) or at least the range, diameter_mm × (1 + cohesion_range) = " +
+                         format_number(range) + " mm (got " + format_number(p.cell_mm) + ")"};
+}
+
+ParamProblem substep_inside_stability_limit(const ParticleParams& p, const Scene& scene) {
+  const ParticleMechanics m = particle_mechanics(p, scene);
+  if (m.dt_s < m.step_limit_s && m.substeps <= kMaxSubsteps) return {};
+  ParticleParams fewest = p;
+  fewest.substeps = 0;
+  const int needed = particle_mechanics(fewest, scene).substeps;
+  // No sub-step count the scene could give would do: the particles make the contact too stiff.
+  if (needed > kMaxSubsteps)
+    return {"diameter_mm", "particles of " + number(p.diameter_mm) + " mm make the contact so stiff (" +
+                               number(m.stiffness_per_s2) + "/s² for a " + number(m.depth_mm) + " mm pile at " +
+                               number(p.compression) + " compression) that its stability limit of " +
+                               number(m.step_limit_s * 1e3) + " ms needs more than " + std::to_string(kMaxSubsteps) +
+                               " sub-steps per frame; use larger particles, or more compression"};
+  return {"substeps", "a sub-step of " + number(m.dt_s * 1e3) + " ms is past the contact's stability limit of " +
+                          number(m.step_limit_s * 1e3) + " ms (stiffness " + number(m.stiffness_per_s2) + "/s² for a " +
+                          number(m.depth_mm) + " mm pile at " + number(p.compression) + " compression, damping " +
+                          number(m.damping_per_s) + "/s, drag " + number(p.drag_per_s) + "/s); use at least " +
+                          std::to_string(needed) +
+                          " sub-steps per frame (0 takes the fewest), larger particles, or more compression"};
+}
+
+// A particle at the speed limit moves less than a radius a step, so none passes through another
+// within the step (the contact sees every overlap while it is less than a diameter).
+ParamProblem step_within_a_radius(const ParticleParams& p, const Scene& scene) {
+  const double travel = p.max_speed_mm_s * particle_mechanics(p, scene).dt_s;
+  if (travel < p.diameter_mm / 2) return {};
+  return {"max_speed_mm_s", "moves " + number(travel) + " mm a sub-step, not less than half a diameter (" +
+                                number(p.diameter_mm / 2) +
+                                " mm): a particle could pass through another; lower "
+                                "it or take more sub-steps"};
+}
+
+ParamProblem lifetime_countable(const ParticleParams& p, const Scene& scene) {
+  const double steps = lifetime_steps(p, scene.frame_rate_hz, particle_mechanics(p, scene).substeps);
+  if (steps <= 2.0e9) return {};
+  return {"lifetime_s",
+          "a lifetime of " + number(p.lifetime_s) + " s is " + number(steps) + " steps; at most 2e9 can be counted"};
+}
+
+// The grid's cells are keyed in 32 bits. Its cells come from cell_mm, or when that is 0 from the
+// diameter (the range), so the refusal names whichever key set them.
+ParamProblem grid_keyable(const ParticleParams& p, const Scene& scene) {
+  const ParticleMechanics m = particle_mechanics(p, scene);
+  const Domain& d = scene.domain;
+  if (particle_grid_cells(m.cell_mm, d.width_mm, d.height_mm) < Count(kMaxGridCells)) return {};
+  // For the message only: the count itself may be past what 64 bits hold.
+  const double cells = std::ceil(d.width_mm / m.cell_mm) * std::ceil(d.height_mm / m.cell_mm);
+  const std::string grid =
+      "the collision grid would have " + number(cells) + " cells of " + number(m.cell_mm) + " mm; at most 4e9";
+  if (p.cell_mm > 0) return {"cell_mm", grid};
+  return {"diameter_mm", grid +
+                             " (cells of the range, diameter_mm × (1 + cohesion_range)): use larger particles, "
+                             "or a larger cell_mm"};
 }
 
 double stable_time_step_s(double k, double c, double drag, int contacts) {
@@ -84,37 +163,21 @@ double stable_time_step_s(double k, double c, double drag, int contacts) {
   return (-b + std::sqrt(b * b + 16.0 * a)) / (2.0 * a);
 }
 
-double particle_lifetime_steps(const ParticleParams& p, double frame_rate_hz, int substeps) {
-  return p.lifetime_s * frame_rate_hz * double(substeps);
-}
+ParticleSettings resolve_particles(const ParticleParams& p, const Scene& scene) {
+  ParticleSettings settings{};
+  const ParticleMechanics mech = particle_mechanics(p, scene);
+  const double dt = mech.dt_s, stretch = least_stretch(scene);
+  settings.mechanics = mech;
+  settings.steps_per_s = scene.frame_rate_hz * double(mech.substeps);
+  const std::uint32_t steps = steps_in(p.lifetime_s, settings.steps_per_s);
+  settings.lifetime = {steps, std::min(steps, steps_in(p.fade_s, settings.steps_per_s))};
+  settings.cells = particle_grid_cells(mech.cell_mm / stretch, scene.domain.width_mm, scene.domain.height_mm);
+  settings.splat = make_splat_model(p, scene.domain);
+  settings.drop = critical_drop(p, mech);
 
-Count particle_grid_cells(double cell_mm, double width_mm, double height_mm) {
-  return cells_along(width_mm, cell_mm) * cells_along(height_mm, cell_mm);
-}
-
-double particle_steps_per_s(const Scene& scene) {
-  return scene.frame_rate_hz * double(particle_mechanics(*scene.particles, scene.domain, scene.frame_rate_hz).substeps);
-}
-
-ParticleLifetime particle_lifetime(const Scene& scene) {
-  const ParticleParams& p = *scene.particles;
-  const double steps_per_s = particle_steps_per_s(scene);
-  const std::uint32_t steps = steps_in(p.lifetime_s, steps_per_s);
-  return {steps, std::min(steps, steps_in(p.fade_s, steps_per_s))};
-}
-
-Count particle_cell_count(const Scene& scene) {
-  const double cell = particle_mechanics(*scene.particles, scene.domain, scene.frame_rate_hz).cell_mm / least_stretch(scene);
-  return particle_grid_cells(cell, scene.domain.width_mm, scene.domain.height_mm);
-}
-
-ParticleModel make_particle_model(const Scene& scene) {
-  const ParticleParams& p = *scene.particles;
-  const ParticleMechanics mech = particle_mechanics(p, scene.domain, scene.frame_rate_hz);
-  const double dt = mech.dt_s;
-  const double r = p.diameter_mm / 2.0, stretch = least_stretch(scene);
+  const double r = p.diameter_mm / 2.0;
   const double margin = std::min(r / stretch, std::min(scene.domain.width_mm, scene.domain.height_mm) / 2.0);
-  ParticleModel m{};
+  ParticleModel& m = settings.model;
   m.radius_mm = float(r);
   m.diameter_mm = float(p.diameter_mm);
   m.diameter_sq = m.diameter_mm * m.diameter_mm;
@@ -145,13 +208,34 @@ ParticleModel make_particle_model(const Scene& scene) {
   m.cell_mm = float(cell_mm);
   m.cells_x = cells_along(scene.domain.width_mm, cell_mm).to<int>();
   m.cells_y = cells_along(scene.domain.height_mm, cell_mm).to<int>();
-  m.lifetime = particle_lifetime(scene);
+  m.lifetime = settings.lifetime;
   m.jitter_mm = float(p.jitter_mm);
   m.velocity_x = float(p.velocity_x_mm_s);
   m.velocity_y = float(p.velocity_y_mm_s);
   m.velocity_jitter = float(p.velocity_jitter_mm_s);
   m.seed = scene.seed;
-  return m;
+  return settings;
+}
+
+ParticleSettings resolve_particles(const Scene& scene) {
+  return resolve_particles(scene.effects.get<ParticleParams>(), scene);
+}
+
+SplatModel make_splat_model(const ParticleParams& p, const Domain& domain) {
+  const double r = p.splat_radius_mm > 0.0 ? p.splat_radius_mm : p.diameter_mm;
+  const double pixel_area_mm2 = domain.width_mm / domain.width_px * (domain.height_mm / domain.height_px);
+  SplatModel s{};
+  s.radius_mm = float(r);
+  s.radius_sq = float(r * r);
+  s.units_per_mm3 = float(double(kSplatUnitsPerMm) / pixel_area_mm2);
+  s.particle_volume_mm3 = float(p.particle_volume_mm3);
+  return s;
+}
+
+Eigen::Vector3d device_gravity_mm_s2(const Scene& scene) {
+  const ParticleParams* p = scene.effects.find<ParticleParams>();
+  if (!p) return Eigen::Vector3d::Zero();
+  return Eigen::Vector3d(p->gravity_x_mm_s2, -p->gravity_y_mm_s2, 0.0);
 }
 
 }  // namespace bleedsim

@@ -1,11 +1,13 @@
 #pragma once
-// The particle model's constants for a run, derived on the host from the parameters and the scene
-// (docs/particles.md derives each), and the limits a scene must respect for the model to be
-// stable and to mean what it says.
+// The particle model resolved for a scene: its constants, derived on the host from the parameters
+// and the scene (docs/particles.md derives each), once per scene (ParticleSettings, which Resolved
+// holds and every consumer reads); and the limits a scene must respect for the model to be stable
+// and to mean what it says (rules of particle_table()).
 #include <cstddef>
 
 #include "core/effects/particles/particle_params.h"
 #include "core/physics/particles.h"
+#include "core/physics/splat.h"
 #include "core/runtime/count.h"
 #include "core/scene/scene.h"
 
@@ -42,7 +44,6 @@ struct ParticleMechanics {
   int substeps;             // the scene's, or the fewest inside the limit (kMaxSubsteps + 1: more than allowed)
   double dt_s;              // 1 / (frame rate × substeps)
 };
-ParticleMechanics particle_mechanics(const ParticleParams& params, const Domain& domain, double frame_rate_hz);
 
 // The largest drop the mucosa holds against gravity: a round patch of the film (thickness t,
 // radius R) whose edge the pinning grips (q_p per unit length, per unit density) and whose every
@@ -53,7 +54,6 @@ struct DropLimit {
   double radius_mm;
   double volume_mm3;
 };
-DropLimit critical_drop(const ParticleParams& params, const Domain& domain, double frame_rate_hz);
 
 // The largest stable sub-step when particles touch up to `contacts` others. In a hexagonal pile
 // (six contacts) the fastest mode has ω² = 6k and damping 6c; with z contacts, ω² ≈ zk. Semi-
@@ -61,20 +61,34 @@ DropLimit critical_drop(const ParticleParams& params, const Domain& domain, doub
 // implies the other Jury condition, z·c·dt < 2 + γ·dt).
 double stable_time_step_s(double stiffness_per_s2, double damping_per_s, double drag_per_s, int contacts);
 
-// Steps in a particle's lifetime, before rounding (a scene's check refuses more than can be counted).
-double particle_lifetime_steps(const ParticleParams& params, double frame_rate_hz, int substeps);
+// The particle model of a scene, resolved once (Resolved holds it; resolve_particles() makes it).
+struct ParticleSettings {
+  ParticleMechanics mechanics;  // the contact, the film, the sub-step
+  double steps_per_s;           // physics steps per second: frame rate × sub-steps
+  ParticleLifetime lifetime;    // in steps: the particles' and the splat's
+  Count cells;                  // of the collision grid (cell_count() of the model; the memory estimate's)
+  ParticleModel model;          // the constants both backends read (its surface map the stage's to set)
+  SplatModel splat;             // the film's footprint (make_splat_model)
+  DropLimit drop;               // the largest drop the mucosa holds
+};
+// `params` on this scene's panel, frame rate and tissue mesh (a scene's own: scene.effects'). Only
+// for parameters that particle_table() accepts.
+ParticleSettings resolve_particles(const ParticleParams& params, const Scene& scene);
+ParticleSettings resolve_particles(const Scene& scene);
 
-// Cells of the collision grid over a width × height mm panel: a scene's check (particle_table())
-// refuses the grids too large to key before anything narrows the count.
-Count particle_grid_cells(double cell_mm, double width_mm, double height_mm);
+// The splat's constants: a particle's blood spread over splat_radius_mm (0: the diameter).
+SplatModel make_splat_model(const ParticleParams& params, const Domain& domain);
 
-// The rest require scene.particles.
-ParticleModel make_particle_model(const Scene& scene);
-// Physics steps per second: frame rate × sub-steps.
-double particle_steps_per_s(const Scene& scene);
-// Parts of the model, for what needs no more of it: the lifetime (the splat's), and the number of
-// cells of the collision grid (cell_count() of the model; the memory estimate's).
-ParticleLifetime particle_lifetime(const Scene& scene);
-Count particle_cell_count(const Scene& scene);
+// Gravity in the device frame (mm/s²), for a tissue mesh: the particles' gravity_mm_s2 means the
+// same on a mesh as on the flat panel, which faces the user: x right, y down the panel (the
+// device's −y). Zero without particles.
+Eigen::Vector3d device_gravity_mm_s2(const Scene& scene);
+
+// The limits, rules of particle_table() that depend on the model's constants.
+ParamProblem cell_holds_the_range(const ParticleParams& params, const Scene& scene);
+ParamProblem grid_keyable(const ParticleParams& params, const Scene& scene);
+ParamProblem substep_inside_stability_limit(const ParticleParams& params, const Scene& scene);
+ParamProblem lifetime_countable(const ParticleParams& params, const Scene& scene);
+ParamProblem step_within_a_radius(const ParticleParams& params, const Scene& scene);
 
 }  // namespace bleedsim

@@ -6,7 +6,6 @@
 #include "core/effects/particles/particle_model.h"
 #include "core/physics/splat.h"
 #include "core/runtime/message_text.h"
-#include "core/scene/scene.h"
 
 namespace bleedsim {
 namespace {
@@ -14,10 +13,6 @@ namespace {
 using P = ParticleParams;
 
 std::string number(double v) { return format_significant(v, 4); }
-
-ParticleMechanics mechanics(const P& p, const Scene& scene) {
-  return particle_mechanics(p, scene.domain, scene.frame_rate_hz);
-}
 
 // ---- what a file leaves out -------------------------------------------------------------------
 
@@ -31,53 +26,16 @@ ParamProblem resolve_file(P& p, const Written& written, const Scene&) {
 
 ParamProblem fade_within_lifetime(const P& p, const Scene&) {
   if (p.fade_s <= p.lifetime_s) return {};
-  return {"fade_s", "must be at most lifetime_s, " + format_number(p.lifetime_s) + " s (got " +
-                        format_number(p.fade_s) + ")"};
-}
-
-ParamProblem cell_holds_the_range(const P& p, const Scene& scene) {
-  const double range = mechanics(p, scene).range_mm;
-  if (p.cell_mm == 0 || p.cell_mm >= range) return {};
-  return {"cell_mm", "must be 0 (the range) or at least the range, diameter_mm × (1 + cohesion_range) = " +
-                         format_number(range) + " mm (got " + format_number(p.cell_mm) + ")"};
+  return {"fade_s",
+          "must be at most lifetime_s, " + format_number(p.lifetime_s) + " s (got " + format_number(p.fade_s) + ")"};
 }
 
 // The contact's stiffness comes from the load it must bear: gravity over the pile, or cohesion.
 ParamProblem something_to_bear(const P& p, const Scene&) {
   if (std::hypot(p.gravity_x_mm_s2, p.gravity_y_mm_s2) > 0 || p.cohesion_mm3_s2 > 0) return {};
-  return {"gravity_mm_s2", "with no gravity and no cohesion the contact has no load to be made stiff for; "
-                           "give either"};
-}
-
-ParamProblem substep_inside_stability_limit(const P& p, const Scene& scene) {
-  const ParticleMechanics m = mechanics(p, scene);
-  if (m.dt_s < m.step_limit_s && m.substeps <= kMaxSubsteps) return {};
-  P fewest = p;
-  fewest.substeps = 0;
-  const int needed = mechanics(fewest, scene).substeps;
-  // No sub-step count the scene could give would do: the particles make the contact too stiff.
-  if (needed > kMaxSubsteps)
-    return {"diameter_mm", "particles of " + number(p.diameter_mm) + " mm make the contact so stiff (" +
-                               number(m.stiffness_per_s2) + "/s² for a " + number(m.depth_mm) + " mm pile at " +
-                               number(p.compression) + " compression) that its stability limit of " +
-                               number(m.step_limit_s * 1e3) + " ms needs more than " + std::to_string(kMaxSubsteps) +
-                               " sub-steps per frame; use larger particles, or more compression"};
-  return {"substeps", "a sub-step of " + number(m.dt_s * 1e3) + " ms is past the contact's stability limit of " +
-                          number(m.step_limit_s * 1e3) + " ms (stiffness " + number(m.stiffness_per_s2) +
-                          "/s² for a " + number(m.depth_mm) + " mm pile at " + number(p.compression) +
-                          " compression, damping " + number(m.damping_per_s) + "/s, drag " + number(p.drag_per_s) +
-                          "/s); use at least " + std::to_string(needed) +
-                          " sub-steps per frame (0 takes the fewest), larger particles, or more compression"};
-}
-
-// A particle at the speed limit moves less than a radius a step, so none passes through another
-// within the step (the contact sees every overlap while it is less than a diameter).
-ParamProblem step_within_a_radius(const P& p, const Scene& scene) {
-  const double travel = p.max_speed_mm_s * mechanics(p, scene).dt_s;
-  if (travel < p.diameter_mm / 2) return {};
-  return {"max_speed_mm_s", "moves " + number(travel) + " mm a sub-step, not less than half a diameter (" +
-                                number(p.diameter_mm / 2) + " mm): a particle could pass through another; lower "
-                                "it or take more sub-steps"};
+  return {"gravity_mm_s2",
+          "with no gravity and no cohesion the contact has no load to be made stiff for; "
+          "give either"};
 }
 
 // A new particle's speed is at most |velocity| + √2·velocity_jitter: within the speed limit, or the
@@ -85,37 +43,15 @@ ParamProblem step_within_a_radius(const P& p, const Scene& scene) {
 ParamProblem emitted_within_the_limit(const P& p, const Scene&) {
   const double fastest = std::hypot(p.velocity_x_mm_s, p.velocity_y_mm_s) + std::sqrt(2.0) * p.velocity_jitter_mm_s;
   if (fastest <= p.max_speed_mm_s) return {};
-  return {"velocity_mm_s", "a new particle may leave at up to " + number(fastest) +
-                               " mm/s (|velocity_mm_s| + √2 × velocity_jitter_mm_s), past max_speed_mm_s = " +
-                               number(p.max_speed_mm_s)};
+  return {"velocity_mm_s",
+          "a new particle may leave at up to " + number(fastest) +
+              " mm/s (|velocity_mm_s| + √2 × velocity_jitter_mm_s), past max_speed_mm_s = " + number(p.max_speed_mm_s)};
 }
 
 ParamProblem particle_fits_the_panel(const P& p, const Scene& scene) {
   if (p.diameter_mm < scene.domain.width_mm && p.diameter_mm < scene.domain.height_mm) return {};
   return {"diameter_mm", "particles of " + number(p.diameter_mm) + " mm do not fit in a " +
                              number(scene.domain.width_mm) + " x " + number(scene.domain.height_mm) + " mm panel"};
-}
-
-ParamProblem lifetime_countable(const P& p, const Scene& scene) {
-  const double steps = particle_lifetime_steps(p, scene.frame_rate_hz, mechanics(p, scene).substeps);
-  if (steps <= 2.0e9) return {};
-  return {"lifetime_s", "a lifetime of " + number(p.lifetime_s) + " s is " + number(steps) +
-                            " steps; at most 2e9 can be counted"};
-}
-
-// The grid's cells are keyed in 32 bits. Its cells come from cell_mm, or when that is 0 from the
-// diameter (the range), so the refusal names whichever key set them.
-ParamProblem grid_keyable(const P& p, const Scene& scene) {
-  const ParticleMechanics m = mechanics(p, scene);
-  const Domain& d = scene.domain;
-  if (particle_grid_cells(m.cell_mm, d.width_mm, d.height_mm) < Count(kMaxGridCells)) return {};
-  // For the message only: the count itself may be past what 64 bits hold.
-  const double cells = std::ceil(d.width_mm / m.cell_mm) * std::ceil(d.height_mm / m.cell_mm);
-  const std::string grid = "the collision grid would have " + number(cells) + " cells of " + number(m.cell_mm) +
-                           " mm; at most 4e9";
-  if (p.cell_mm > 0) return {"cell_mm", grid};
-  return {"diameter_mm", grid + " (cells of the range, diameter_mm × (1 + cohesion_range)): use larger particles, "
-                                "or a larger cell_mm"};
 }
 
 // The splat sums deposits as integers of bounded size: a particle's whole blood in one pixel (a
@@ -139,59 +75,157 @@ const ParamTable<ParticleParams>& particle_table() {
   static const ParamTable<P> table{
       "particles",
       "declares the particle blood flow from the cuts, its model, and the wound's defaults for cuts that give none",
-      {{"capacity", T::integer, BLEEDSIM_MEMBER(P, capacity), "", {1, 268435456},
+      {{"capacity",
+        T::integer,
+        BLEEDSIM_MEMBER(P, capacity),
+        "",
+        {1, 268435456},
         "ring-buffer slots: the most particles alive at once; when it is full the oldest is overwritten"},
-       {"diameter_mm", T::number, BLEEDSIM_MEMBER(P, diameter_mm), "mm", {0, 100, true},
+       {"diameter_mm",
+        T::number,
+        BLEEDSIM_MEMBER(P, diameter_mm),
+        "mm",
+        {0, 100, true},
         "particle size; less than the panel's width and height"},
-       {"particle_volume_mm3", T::number, BLEEDSIM_MEMBER(P, particle_volume_mm3), "mm³", {0, 1e6, true},
+       {"particle_volume_mm3",
+        T::number,
+        BLEEDSIM_MEMBER(P, particle_volume_mm3),
+        "mm³",
+        {0, 1e6, true},
         "the blood one particle stands for: the volume its splat spreads into the film"},
-       {"cell_mm", T::number, BLEEDSIM_MEMBER(P, cell_mm), "mm", {0, 1e4},
+       {"cell_mm",
+        T::number,
+        BLEEDSIM_MEMBER(P, cell_mm),
+        "mm",
+        {0, 1e4},
         "edge of the collision grid's cells: 0 (the range) or at least diameter_mm × (1 + cohesion_range)",
         "0: the range"},
-       {"flow_mm3_per_s_per_mm", T::number, BLEEDSIM_MEMBER(P, flow_mm3_per_s_per_mm), "mm³/s/mm", {0, 1e6},
+       {"flow_mm3_per_s_per_mm",
+        T::number,
+        BLEEDSIM_MEMBER(P, flow_mm3_per_s_per_mm),
+        "mm³/s/mm",
+        {0, 1e6},
         "blood per second per mm of wound as a cut starts (the cuts' default)"},
-       {"bleed_s", T::number, BLEEDSIM_MEMBER(P, bleed_s), "s", {0, 86400},
+       {"bleed_s",
+        T::number,
+        BLEEDSIM_MEMBER(P, bleed_s),
+        "s",
+        {0, 86400},
         "how long a cut bleeds after its start_s (the cuts' default)"},
-       {"clot_s", T::number, BLEEDSIM_MEMBER(P, clot_s), "s", {0, 86400},
+       {"clot_s",
+        T::number,
+        BLEEDSIM_MEMBER(P, clot_s),
+        "s",
+        {0, 86400},
         "a cut's flow falls as exp(−t / clot_s) as it clots; 0: it does not (the cuts' default)"},
        {"lifetime_s", T::number, BLEEDSIM_MEMBER(P, lifetime_s), "s", {0, 86400, true}, "how long a particle lives"},
-       {"fade_s", T::number, BLEEDSIM_MEMBER(P, fade_s), "s", {0, 86400, true},
+       {"fade_s",
+        T::number,
+        BLEEDSIM_MEMBER(P, fade_s),
+        "s",
+        {0, 86400, true},
         "the end of the lifetime, over which a particle fades out; at most lifetime_s",
         "1, or lifetime_s when that is shorter"},
-       {"gravity_mm_s2", T::vector, BLEEDSIM_VECTOR(P, gravity_x_mm_s2, gravity_y_mm_s2), "mm/s²", {-1e6, 1e6},
+       {"gravity_mm_s2",
+        T::vector,
+        BLEEDSIM_VECTOR(P, gravity_x_mm_s2, gravity_y_mm_s2),
+        "mm/s²",
+        {-1e6, 1e6},
         "acceleration along the panel; y points down"},
-       {"drag_per_s", T::number, BLEEDSIM_MEMBER(P, drag_per_s), "1/s", {0, 1e6},
+       {"drag_per_s",
+        T::number,
+        BLEEDSIM_MEMBER(P, drag_per_s),
+        "1/s",
+        {0, 1e6},
         "viscous drag against the tissue: a lone particle slides at gravity / drag"},
-       {"compression", T::number, BLEEDSIM_MEMBER(P, compression), "", {0, 0.5, true},
+       {"compression",
+        T::number,
+        BLEEDSIM_MEMBER(P, compression),
+        "",
+        {0, 0.5, true},
         "the deepest pile's overlap, as a fraction of the diameter: sets the contact's stiffness"},
-       {"design_depth_mm", T::number, BLEEDSIM_MEMBER(P, design_depth_mm), "mm", {0, 1e4},
-        "the deepest pile the contact is made stiff for", "0: the panel's extent along gravity, or the ring's "
+       {"design_depth_mm",
+        T::number,
+        BLEEDSIM_MEMBER(P, design_depth_mm),
+        "mm",
+        {0, 1e4},
+        "the deepest pile the contact is made stiff for",
+        "0: the panel's extent along gravity, or the ring's "
         "whole capacity heaped into a quarter-disc in a corner, whichever is less"},
-       {"damping_ratio", T::number, BLEEDSIM_MEMBER(P, damping_ratio), "", {0, 1},
+       {"damping_ratio",
+        T::number,
+        BLEEDSIM_MEMBER(P, damping_ratio),
+        "",
+        {0, 1},
         "the contact's dashpot, as a fraction of a pair's critical damping"},
-       {"cohesion_mm3_s2", T::number, BLEEDSIM_MEMBER(P, cohesion_mm3_s2), "mm³/s²", {0, 1e6},
+       {"cohesion_mm3_s2",
+        T::number,
+        BLEEDSIM_MEMBER(P, cohesion_mm3_s2),
+        "mm³/s²",
+        {0, 1e6},
         "surface tension: the pull between neighbours, a force per unit length of the film's edge per unit "
         "density"},
-       {"cohesion_range", T::number, BLEEDSIM_MEMBER(P, cohesion_range), "diameters", {0, 2},
+       {"cohesion_range",
+        T::number,
+        BLEEDSIM_MEMBER(P, cohesion_range),
+        "diameters",
+        {0, 2},
         "how far beyond contact cohesion reaches"},
-       {"pinning_mm3_s2", T::number, BLEEDSIM_MEMBER(P, pinning_mm3_s2), "mm³/s²", {0, 1e6},
+       {"pinning_mm3_s2",
+        T::number,
+        BLEEDSIM_MEMBER(P, pinning_mm3_s2),
+        "mm³/s²",
+        {0, 1e6},
         "the mucosa's grip on the film's edge (contact-angle hysteresis), per unit length per unit density"},
-       {"yield_mm2_s2", T::number, BLEEDSIM_MEMBER(P, yield_mm2_s2), "mm²/s²", {0, 1e6},
+       {"yield_mm2_s2",
+        T::number,
+        BLEEDSIM_MEMBER(P, yield_mm2_s2),
+        "mm²/s²",
+        {0, 1e6},
         "blood's yield stress per unit density: the grip on every particle"},
-       {"birth_s", T::number, BLEEDSIM_MEMBER(P, birth_s), "s", {0, 10},
+       {"birth_s",
+        T::number,
+        BLEEDSIM_MEMBER(P, birth_s),
+        "s",
+        {0, 10},
         "over this a new particle's overlaps are undone by moving it, at no more than gravity / drag, not by "
         "pushing it: a burst parts without a blast"},
-       {"max_speed_mm_s", T::number, BLEEDSIM_MEMBER(P, max_speed_mm_s), "mm/s", {0, 1e5, true},
+       {"max_speed_mm_s",
+        T::number,
+        BLEEDSIM_MEMBER(P, max_speed_mm_s),
+        "mm/s",
+        {0, 1e5, true},
         "speed limit: no particle moves faster; with the sub-step, less than half a diameter a step"},
-       {"substeps", T::integer, BLEEDSIM_MEMBER(P, substeps), "", {0, double(kMaxSubsteps)},
-        "physics steps per frame, inside the contact's stability limit", "0: the fewest inside the limit"},
-       {"jitter_mm", T::number, BLEEDSIM_MEMBER(P, jitter_mm), "mm", {0, 100},
+       {"substeps",
+        T::integer,
+        BLEEDSIM_MEMBER(P, substeps),
+        "",
+        {0, double(kMaxSubsteps)},
+        "physics steps per frame, inside the contact's stability limit",
+        "0: the fewest inside the limit"},
+       {"jitter_mm",
+        T::number,
+        BLEEDSIM_MEMBER(P, jitter_mm),
+        "mm",
+        {0, 100},
         "a new particle is placed up to ± this from its cut, in x and in y"},
-       {"velocity_mm_s", T::vector, BLEEDSIM_VECTOR(P, velocity_x_mm_s, velocity_y_mm_s), "mm/s", {-1e5, 1e5},
+       {"velocity_mm_s",
+        T::vector,
+        BLEEDSIM_VECTOR(P, velocity_x_mm_s, velocity_y_mm_s),
+        "mm/s",
+        {-1e5, 1e5},
         "a new particle's velocity"},
-       {"velocity_jitter_mm_s", T::number, BLEEDSIM_MEMBER(P, velocity_jitter_mm_s), "mm/s", {0, 1e5},
+       {"velocity_jitter_mm_s",
+        T::number,
+        BLEEDSIM_MEMBER(P, velocity_jitter_mm_s),
+        "mm/s",
+        {0, 1e5},
         "up to ± this added to a new particle's velocity, in x and in y"},
-       {"splat_radius_mm", T::number, BLEEDSIM_MEMBER(P, splat_radius_mm), "mm", {0, 100},
+       {"splat_radius_mm",
+        T::number,
+        BLEEDSIM_MEMBER(P, splat_radius_mm),
+        "mm",
+        {0, 100},
         "how far from its centre a particle's blood spreads in the film: 0 (the diameter) or more",
         "0: the diameter"}},
       {{"fade_s is at most lifetime_s", fade_within_lifetime},

@@ -4,6 +4,9 @@
 
 namespace bleedsim {
 
+template <class P>
+struct Effect;
+
 // Present in a Scene only when the scene calls for the spread. The cuts that give no size of
 // their own take these.
 struct SpreadParams {
@@ -12,5 +15,7 @@ struct SpreadParams {
 };
 
 const ParamTable<SpreadParams>& spread_table();
+// Its row: the spread stage (spread_stage.cpp).
+const Effect<SpreadParams>& spread_effect();
 
 }  // namespace bleedsim

@@ -1,11 +1,43 @@
-#include "core/effects/spread/spread_stage.h"
-
+// The spread effect: its stage, and its row (declared in spread_params.h).
 #include <algorithm>
+#include <cstddef>
+#include <vector>
 
+#include "core/effects/effect.h"
+#include "core/effects/spread/spread_params.h"
+#include "core/effects/spread/spread_tiles.h"
+#include "core/effects/stage.h"
 #include "core/effects/surface/surface_stage.h"
 #include "core/physics/pixel_kernels.h"
+#include "core/physics/spread.h"
 
 namespace bleedsim {
+
+// (cuts, frame time) => spread/stain
+// Each frame: the cuts' amplitudes at the frame time and the live cuts' tile table (host), then the
+// stain field (backend). Cuts at the front of the list whose stains no longer change are folded,
+// once, into the light they let through (SpreadSettle), so that a frame's cost follows the cuts
+// still growing, not every cut made; and each pixel multiplies in only the live cuts its tile
+// lists, so that its cost follows the cuts that overlap it.
+class SpreadStage final : public Stage {
+ public:
+  SpreadStage(const StageKind& kind, const Scene& scene, const Resolved& resolved, State& state, Backend& backend);
+  static MemoryParts memory_for(const Scene& scene, const Resolved& resolved);
+  void run(const Scene& scene, State& state, Backend& backend) override;
+
+ private:
+  // The box of pixels that holds every pixel these cuts can stain.
+  SpreadSettle settle_box(const Scene& scene, const SpreadCut* cuts, int count) const;
+
+  Field& stain_;
+  Buffer cuts_;                    // SpreadUpload's block: the cuts to settle, the live cuts, their tile table; grows
+  Buffer settled_;                 // float per pixel: the light the settled cuts let through
+  std::size_t settled_count_ = 0;  // cuts [0, settled_count_) of the list are folded into settled_
+  double reach_per_mm_;            // spread_reach_per_mm
+  std::vector<SpreadCut> host_;
+  SpreadUpload upload_;
+  std::vector<unsigned char> on_device_;  // the block as last copied into cuts_
+};
 namespace {
 
 constexpr std::size_t kInitialCutCapacity = 16;
@@ -25,7 +57,7 @@ SpreadCut spread_cut(const Cut& cut, float amplitude) {
 
 }  // namespace
 
-SpreadStage::SpreadStage(const StageKind& kind, const Scene& scene, State& state, Backend& backend)
+SpreadStage::SpreadStage(const StageKind& kind, const Scene& scene, const Resolved&, State& state, Backend& backend)
     : Stage(kind),
       stain_(add_field(scene, state, backend, "spread/stain")),
       cuts_(allocate(backend, block_capacity_for(scene))),
@@ -36,7 +68,7 @@ SpreadStage::SpreadStage(const StageKind& kind, const Scene& scene, State& state
   backend.upload(settled_.data(), all_light.data(), settled_.bytes());
 }
 
-MemoryParts SpreadStage::memory_for(const Scene& scene) {
+MemoryParts SpreadStage::memory_for(const Scene& scene, const Resolved&) {
   return {scene.domain.memory(sizeof(float)),
           {"cut", "the spread's cuts and tile table", Count(block_capacity_for(scene))},
           scene.domain.memory(sizeof(float))};
@@ -46,7 +78,14 @@ SpreadSettle SpreadStage::settle_box(const Scene& scene, const SpreadCut* cuts, 
   const PixelGrid grid = scene.domain.grid();
   PixelBox box{grid.width, 0, grid.height, 0};
   for (int c = 0; c < count; ++c) box = united(box, stain_box(host_[c], grid, reach_per_mm_));
-  return {cuts, count, grid, settled_.as<float>(), {}, box.i0, box.j0, std::max(0, box.i1 - box.i0),
+  return {cuts,
+          count,
+          grid,
+          settled_.as<float>(),
+          {},
+          box.i0,
+          box.j0,
+          std::max(0, box.i1 - box.i0),
           std::max(0, box.j1 - box.j0)};
 }
 
@@ -82,6 +121,21 @@ void SpreadStage::run(const Scene& scene, State& state, Backend& backend) {
     if (settle.box_width > 0 && settle.box_height > 0) launch(backend, settle);
   }
   launch(backend, upload_.pixel_work(cuts_.data(), stain_.data.as<float>(), surface, settled_.as<const float>()));
+}
+
+const Effect<SpreadParams>& spread_effect() {
+  static const Effect<SpreadParams> row{
+      spread_table,
+      {{"spread",
+        "spread",
+        declares<SpreadParams>,
+        {image_field("spread/stain", ElementType::f32, 1, "1",
+                     "radial-spread stain: the share of a full stain (report 2.2.1), drawn as stain_depth_mm of "
+                     "blood")},
+        surface_fields,
+        SpreadStage::memory_for,
+        make_stage<SpreadStage>}}};
+  return row;
 }
 
 }  // namespace bleedsim
