@@ -8,6 +8,8 @@
 // edge pixel. The weights are computed once on the host and uploaded.
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <cstring>
 
 #include "core/physics/hd.h"
 #include "core/physics/pixel_grid.h"
@@ -34,12 +36,17 @@ struct BlurArgs {
 // mean scales by an exact inverse (inverse_factor).
 constexpr int kBlurFactors[] = {1, 2, 4};
 
-// 1 / factor, exactly, for a power of two: halvings of 1, each exact. Multiplying by it rounds the
-// same real number as dividing by the factor does, to the bit, and spares the pixel a division, a
-// long sequence on the GPU.
-BLEEDSIM_HD constexpr float inverse_factor(int factor) {
-  float inverse = 1.0f;
-  for (int f = factor; f > 1; f /= 2) inverse *= 0.5f;
+// 1 / factor, exactly, for a power of two 2^k: its float's exponent field is 127 + k and the
+// inverse's 127 − k, over the same zero mantissa, so the inverse's bits are 254·2²³ less the
+// factor's. Multiplying by it rounds the same real number as dividing by the factor does, to the
+// bit, and spares the pixel a division (a long sequence on the GPU), a loop or a test a factor.
+BLEEDSIM_HD inline float inverse_factor(int factor) {
+  const float f = float(factor);
+  std::uint32_t bits;
+  std::memcpy(&bits, &f, sizeof bits);
+  bits = 0x7F000000u - bits;
+  float inverse;
+  std::memcpy(&inverse, &bits, sizeof inverse);
   return inverse;
 }
 
