@@ -213,7 +213,7 @@ struct Pile {
     // the middle of its width. What it does there is measured on the backend, once each, undone.
     const Resolved resolved = resolve(scene);
     suction.emplace(scene, resolved, *backend, n);
-    contact.emplace(scene, resolved);
+    contact.emplace(scene, resolved, *backend, n);
     double top = scene.domain.height_mm;  // y grows downward
     for (std::size_t i = 1; i < last_xy.size(); i += 2) top = std::min(top, double(last_xy[i]));
     tip = {0.0, scene.domain.width_mm / 2.0, top + scene.effects.get<SuctionParams>().radius_mm, true, kEveryButton};

@@ -42,8 +42,7 @@ Scene scene_with_cuts(int settled) {
     cut.growth_per_s = 1000.0;  // full by the first frame's time, 1/30 s
     scene.cuts.push_back(cut);
   }
-  for (int f = 0; f < kWarmFrames + kTimedFrames + 1; ++f)
-    scene.cuts.push_back(cut_at(scene, x(random), y(random), f / kFrameRate));
+  for (int f = 0; f < kWarmFrames + kTimedFrames + 1; ++f) scene.cuts.push_back(cut_at(scene, x(random), y(random), f / kFrameRate));
   return scene;
 }
 

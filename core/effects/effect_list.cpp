@@ -54,6 +54,20 @@ Cut cut_as_made(const Scene& scene, Cut cut) {
   return cut;
 }
 
+std::vector<std::string> hook_tables() {
+  std::vector<std::string> tables;
+  for_each_effect([&](const auto& effect) {
+    if (!effect.hooks.empty()) tables.push_back(effect.table().name);
+  });
+  return tables;
+}
+
+bool declares_a_hook(const Scene& scene) {
+  bool any = false;
+  for_each_declared_effect(scene, [&](const auto& effect, const auto&) { any = any || !effect.hooks.empty(); });
+  return any;
+}
+
 std::string describe_effects(const Scene& scene, const Resolved& resolved, const RunOutline& run) {
   std::string text;
   for_each_declared_effect(scene, [&](const auto& effect, const auto&) {

@@ -54,6 +54,11 @@ ParamProblem effects_problem(const Scene& scene);
 // A cut as it bleeds in this scene: the rules of the effects it declares, applied in order.
 Cut cut_as_made(const Scene& scene, Cut cut);
 
+// The tables of the effects with hooks in the particle step ("suction", "contact"), which act
+// through the instrument; and whether a scene declares any of them.
+std::vector<std::string> hook_tables();
+bool declares_a_hook(const Scene& scene);
+
 // What `bleedsim validate` says of the effects a scene declares, in order.
 std::string describe_effects(const Scene& scene, const Resolved& resolved, const RunOutline& run);
 

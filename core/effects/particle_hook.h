@@ -32,6 +32,12 @@ struct HookKind {
   std::unique_ptr<ParticleHook> (*make)(const Scene&, const Resolved&, Backend&, int capacity);
 };
 
+// How a row builds its hook H: H(scene, resolved, backend, capacity).
+template <class H>
+std::unique_ptr<ParticleHook> make_hook(const Scene& scene, const Resolved& resolved, Backend& backend, int capacity) {
+  return std::make_unique<H>(scene, resolved, backend, capacity);
+}
+
 // The hooks of the effects this scene declares, in the list's order, and their memory.
 std::vector<std::unique_ptr<ParticleHook>> make_particle_hooks(const Scene& scene, const Resolved& resolved,
                                                                Backend& backend, int capacity);

@@ -1,8 +1,7 @@
 #include "core/effects/tips.h"
 
-#include "core/effects/contact/contact_params.h"
+#include "core/effects/effect_list.h"
 #include "core/effects/particles/particle_params.h"
-#include "core/effects/suction/suction_params.h"
 #include "core/runtime/message_text.h"
 
 namespace bleedsim {
@@ -10,6 +9,15 @@ namespace {
 
 // Any finite position: a scripted tip may pass beyond the panel.
 const Range kAnywhere{-1e4, 1e4};
+
+// "[suction] or [contact]": what a path may drive, from the list of effects.
+std::string hooks_in_words() {
+  const std::vector<std::string> tables = hook_tables();
+  std::string words;
+  for (std::size_t i = 0; i < tables.size(); ++i)
+    words += (i == 0 ? "" : i + 1 == tables.size() ? " or " : ", ") + ("[" + tables[i] + "]");
+  return words;
+}
 
 }  // namespace
 
@@ -34,8 +42,9 @@ ParamProblem tip_path_problem(const Scene& scene) {
   if (tips.empty()) return {};
   if (scene.haptics)
     return {"tip", "a scene has one instrument: its stylus ([haptics]) or a scripted path of [[tip]] points, not both"};
-  if (!scene.effects.has<SuctionParams>() && !scene.effects.has<ContactParams>())
-    return {"tip", "has no effect: a path drives [suction] or [contact], and this scene declares neither"};
+  if (!declares_a_hook(scene))
+    return {"tip", "has no effect: a path drives " + hooks_in_words() + ", and this scene declares " +
+                       (hook_tables().size() == 2 ? "neither" : "none of them")};
   if (tips.size() < 2) return {"tip", "a path needs at least two points (when it starts and when it ends)"};
   for (std::size_t i = 1; i < tips.size(); ++i)
     if (!(tips[i].t_s > tips[i - 1].t_s))

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/io/output_spec.h"
+#include "core/io/scenario_tables.h"
 #include "core/mesh/view_render.h"
 #include "core/runtime/input_error.h"
 #include "core/runtime/params.h"
@@ -45,11 +46,5 @@ Scenario load_scenario(const std::string& path, ReadTissue tissue = ReadTissue::
 
 // The same for text already in memory; `path` names it in messages and anchors relative paths.
 Scenario parse_scenario(const std::string& text, const std::string& path, ReadTissue tissue = ReadTissue::draw);
-
-// Every table a scenario may hold, in the order docs/scenario-format.md lists them: what
-// `bleedsim params` prints and the docs' generated tables show.
-std::vector<TableView> scenario_tables();
-// The parameter "table.key" ("particles.substeps") of those tables; std::out_of_range when none is.
-const ParamView& scenario_param(const std::string& key);
 
 }  // namespace bleedsim

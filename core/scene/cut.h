@@ -15,13 +15,13 @@ struct Cut {
   double start_s = 0.0;
   double radius_mm = 0.0;
   double growth_per_s = 0.0;
-  double wound_mm = 1.0;               // the length of wound it stands for
+  double wound_mm = 1.0;              // the length of wound it stands for
   double flow_mm3_per_s_per_mm = 0.0;  // blood per second per mm of wound, as it starts
-  double bleed_s = 0.0;                // how long it bleeds
-  double clot_s = 0.0;                 // the flow falls as exp(−t/clot_s); 0: it does not
-  bool arterial = false;               // with [pulse]: its flow and exit speed follow the heartbeat
-  double wound_angle_deg = 0.0;        // with [vessels]: the wound's direction, centred on (x, y)
-  double vessel_density = 1.0;         // the mean vessel density along its wound (1 without [vessels])
+  double bleed_s = 0.0;               // how long it bleeds
+  double clot_s = 0.0;                // the flow falls as exp(−t/clot_s); 0: it does not
+  bool arterial = false;              // with [pulse]: its flow and exit speed follow the heartbeat
+  double wound_angle_deg = 0.0;       // with [vessels]: the wound's direction, centred on (x, y)
+  double vessel_density = 1.0;        // the mean vessel density along its wound (1 without [vessels])
 };
 
 }  // namespace bleedsim

@@ -6,12 +6,9 @@ namespace bleedsim {
 
 std::size_t element_size(ElementType type) {
   switch (type) {
-    case ElementType::u8:
-      return 1;
-    case ElementType::u64:
-      return 8;
-    default:
-      return 4;
+    case ElementType::u8: return 1;
+    case ElementType::u64: return 8;
+    default: return 4;
   }
 }
 
@@ -21,7 +18,9 @@ Field* State::find(const std::string& name) {
   return nullptr;
 }
 
-const Field* State::find(const std::string& name) const { return const_cast<State*>(this)->find(name); }
+const Field* State::find(const std::string& name) const {
+  return const_cast<State*>(this)->find(name);
+}
 
 const Field& State::require(const std::string& name) const {
   const Field* field = find(name);

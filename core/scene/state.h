@@ -30,7 +30,7 @@ struct FieldLayout {
   int height = 0;  // 1 when not an image
   std::string unit;
   std::string description;
-  bool image = true;        // last, so aggregate initialisers written before it stay valid
+  bool image = true;  // last, so aggregate initialisers written before it stay valid
   bool on_request = false;  // written to files only when the scene lists it (per-particle arrays)
 
   std::size_t bytes() const {
@@ -49,7 +49,7 @@ struct State {
   // The stylus's samples for the frame being computed (the haptic loop's, or the host's), after
   // the last one of the frames before it: its tip between them is the instrument's.
   std::vector<ToolSample> stylus;
-  std::deque<Field> fields;  // deque: a Field's address never moves once added
+  std::deque<Field> fields;      // deque: a Field's address never moves once added
   // The trail's pass for the frame being computed, which the blend runs in its own pass over the
   // same pixels (TrailThenBlend): set by the trail stage, taken by the blend stage.
   std::optional<TrailPixel> trail_pass;

@@ -6,8 +6,8 @@ namespace bleedsim {
 
 std::optional<ToolSample> tool_at(const std::vector<ToolSample>& samples, double t_s, bool hold) {
   // The first sample later than t; the one before it is at or before t.
-  const auto after =
-      std::upper_bound(samples.begin(), samples.end(), t_s, [](double t, const ToolSample& s) { return t < s.t_s; });
+  const auto after = std::upper_bound(samples.begin(), samples.end(), t_s,
+                                      [](double t, const ToolSample& s) { return t < s.t_s; });
   if (after == samples.begin()) return std::nullopt;
   ToolSample at = *(after - 1);
   if (after == samples.end()) {

@@ -12,17 +12,17 @@ namespace bleedsim {
 struct TraceSample {
   double t_s = 0;
   double x_m = 0, y_m = 0, z_m = 0;
-  std::uint8_t buttons = 0;             // bitmask of the four grip buttons, 0x1..0x8
+  std::uint8_t buttons = 0;  // bitmask of the four grip buttons, 0x1..0x8
   double fx_N = 0, fy_N = 0, fz_N = 0;  // the force that was sent; 0 when the trace has none
 };
 
 struct Trace {
   std::string path;
   std::map<std::string, std::string> metadata;  // every `# key: value` line, values as text
-  double rate_hz = 0;                           // metadata rate_hz, checked against the samples
-  bool has_force = false;                       // the header has fx_N,fy_N,fz_N
-  std::vector<TraceSample> samples;             // time strictly increasing, repairs included
-  std::vector<std::string> repairs;             // one human-readable line per repair made
+  double rate_hz = 0;                            // metadata rate_hz, checked against the samples
+  bool has_force = false;                        // the header has fx_N,fy_N,fz_N
+  std::vector<TraceSample> samples;              // time strictly increasing, repairs included
+  std::vector<std::string> repairs;              // one human-readable line per repair made
 };
 
 // The Falcon's workspace in libnifalcon's device frame (metres) and its force limit.

@@ -86,8 +86,8 @@ void Simulation::step() {
   // The stylus's samples up to this frame's end are done with but the last, where it stays.
   const double end_s = scene_.frame_time_s(state_.frames_done);
   std::vector<ToolSample>& stylus = state_.stylus;
-  const auto after =
-      std::upper_bound(stylus.begin(), stylus.end(), end_s, [](double t, const ToolSample& s) { return t < s.t_s; });
+  const auto after = std::upper_bound(stylus.begin(), stylus.end(), end_s,
+                                      [](double t, const ToolSample& s) { return t < s.t_s; });
   if (after - stylus.begin() > 1) stylus.erase(stylus.begin(), after - 1);
   ++state_.frames_done;
 }

@@ -64,9 +64,10 @@ void set_particle_size(Scene& s, double f) {
 
 // The blur's taps and width in downsampled pixels, scaled so its width on the panel stays.
 void scale_blur_pixels(Scene& s, double factor) {
-  if (!s.effects.has<BlurParams>()) return;
-  s.effects.get<BlurParams>().radius_px = int(std::round(s.effects.get<BlurParams>().radius_px * factor));
-  s.effects.get<BlurParams>().sigma_px *= factor;
+  BlurParams* blur = s.effects.find<BlurParams>();
+  if (!blur) return;
+  blur->radius_px = int(std::round(blur->radius_px * factor));
+  blur->sigma_px *= factor;
 }
 
 // The panel's pixels; the tissue and the vessel map are the scene's, drawn or read again at the new
@@ -125,29 +126,24 @@ const std::vector<Knob>& knobs() {
          return std::vector<double>{4 * e, 2 * e, e};
        },
        set_compression},
-      {"substeps", "physics steps per frame (the time step): more cost more and refine the time step",
-       "the contact, the particles and everything else", true, true, kNaN, "particles.substeps", has_particles,
-       resolved_substeps,
-       [](const Scene& s) {
-         return whole_multiples(resolved_substeps(s), {1, 2});
-       },
-       set_substeps},
+      {"substeps",
+       "physics steps per frame (the time step): more cost more and refine the time step",
+       "the contact, the particles and everything else",
+       true, true, kNaN, "particles.substeps", has_particles, resolved_substeps,
+       [](const Scene& s) { return whole_multiples(resolved_substeps(s), {1, 2}); }, set_substeps},
       {"particle_size",
        "the particles' diameter, as a factor: larger particles are fewer and cheaper, and sample the "
        "flow and the film more coarsely",
        "the blood (its volume, flow and film), the compression, the surface tension and grip per unit "
        "length, the time step (a size whose contact it cannot hold is refused)",
        false, false, kNaN, nullptr, has_particles, [](const Scene&) { return 1.0; },
-       [](const Scene&) {
-         return std::vector<double>{4.0, 2.0, 1.0};
-       },
-       set_particle_size},
-      {"blur_radius", "the blur's taps either side: fewer cost less, and cut the Gaussian's tails off",
-       "the Gaussian's width and the downsampling", true, true, kNaN, "blur.radius_px", has_blur,
+       [](const Scene&) { return std::vector<double>{4.0, 2.0, 1.0}; }, set_particle_size},
+      {"blur_radius",
+       "the blur's taps either side: fewer cost less, and cut the Gaussian's tails off",
+       "the Gaussian's width and the downsampling",
+       true, true, kNaN, "blur.radius_px", has_blur,
        [](const Scene& s) { return double(s.effects.get<BlurParams>().radius_px); },
-       [](const Scene& s) {
-         return whole_multiples(s.effects.get<BlurParams>().radius_px, {0.25, 0.5, 1});
-       },
+       [](const Scene& s) { return whole_multiples(s.effects.get<BlurParams>().radius_px, {0.25, 0.5, 1}); },
        [](Scene& s, double r) { s.effects.get<BlurParams>().radius_px = int(r); }},
       {"blur_downsample",
        "the blur's downsampling (1, 2 or 4): more is cheaper, and coarsens the film's edges (1: none, "
@@ -164,10 +160,7 @@ const std::vector<Knob>& knobs() {
        "the panel in mm, the particles, the blur's width on the panel, the tissue and vessels (drawn "
        "again at the new size)",
        true, false, kNaN, nullptr, always, [](const Scene&) { return 1.0; },
-       [](const Scene&) {
-         return std::vector<double>{0.25, 0.5, 1.0};
-       },
-       set_resolution},
+       [](const Scene&) { return std::vector<double>{0.25, 0.5, 1.0}; }, set_resolution},
   };
   return table;
 }

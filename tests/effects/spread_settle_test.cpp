@@ -30,7 +30,7 @@ void add_stroke(Scene& scene) {
   for (int c = 0; c < 200; ++c) {
     const double s = c / 199.0;
     Cut cut = cut_at(scene, scene.domain.width_mm * (0.1 + 0.8 * (c % 50) / 49.0),
-                     scene.domain.height_mm * (0.2 + 0.6 * s + 0.1 * ((c / 5) % 2)), 0.01 * c);
+                           scene.domain.height_mm * (0.2 + 0.6 * s + 0.1 * ((c / 5) % 2)), 0.01 * c);
     cut.radius_mm = 1.0 + 0.5 * (c % 3);
     cut.growth_per_s = c % 7 == 3 ? 0.8 : c % 11 == 0 ? 1000.0 : 2.0;
     if (c % 13 == 0) cut.radius_mm = 0.01;  // within a pixel's centre or not at all

@@ -53,14 +53,8 @@ BloodOptics blood_optics(const OpticsParams& o) {
 }
 
 Headlight headlight(const OpticsParams& o, const Domain& d) {
-  return {float(d.width_mm / 2 + o.camera_x_mm),
-          float(d.height_mm / 2 + o.camera_y_mm),
-          float(o.camera_height_mm),
-          o.falloff ? 1 : 0,
-          float(o.specular),
-          o.shininess,
-          float(o.sheen),
-          o.sheen_shininess};
+  return {float(d.width_mm / 2 + o.camera_x_mm), float(d.height_mm / 2 + o.camera_y_mm), float(o.camera_height_mm),
+          o.falloff ? 1 : 0,   float(o.specular),  o.shininess, float(o.sheen), o.sheen_shininess};
 }
 
 BlendPixel blend_work(const Scene& scene, const float* tables, const std::uint8_t* tissue_rgba, const float* stain,
@@ -128,21 +122,20 @@ void BlendStage::run(const Scene&, State& state, Backend& backend) {
 }
 
 const Effect<OpticsParams>& optics_effect() {
-  static const Effect<OpticsParams> row{
-      optics_table,
-      {{"blend",
-        "",
-        [](const Scene&) { return true; },
-        {image_field("frame", ElementType::u8, 4, "sRGB 8-bit",
-                     "the rendered frame: blood composited over the tissue in linear light (RGBA)")},
-        [](const Scene& s) {
-          std::vector<std::string> reads;
-          for (const char* field : {blend_stain_field(s), blend_film_field(s), blend_residue_field(s)})
-            if (field) reads.push_back(field);
-          return reads;
-        },
-        BlendStage::memory_for,
-        make_stage<BlendStage>}}};
+  static const Effect<OpticsParams> row = [] {
+    Effect<OpticsParams> e{optics_table};
+    const auto reads = [](const Scene& s) {
+      std::vector<std::string> fields;
+      for (const char* field : {blend_stain_field(s), blend_film_field(s), blend_residue_field(s)})
+        if (field) fields.push_back(field);
+      return fields;
+    };
+    e.stages = {{"blend", "", [](const Scene&) { return true; },
+                 {image_field("frame", ElementType::u8, 4, "sRGB 8-bit",
+                              "the rendered frame: blood composited over the tissue in linear light (RGBA)")},
+                 reads, BlendStage::memory_for, make_stage<BlendStage>}};
+    return e;
+  }();
   return row;
 }
 

@@ -15,11 +15,11 @@ struct OpticsParams {
   double stain_depth_mm = 0.04;        // the film of blood a full stain holds in the tissue
   double camera_x_mm = 0.0;            // the endoscope's tip, from the panel's centre ...
   double camera_y_mm = 0.0;
-  double camera_height_mm = 20.0;  // ... and above the panel
-  bool falloff = true;             // the headlight falls off as a point source's
-  double specular = 1.0;           // the blood's highlight at its peak (linear light)
-  int shininess = 256;             // its lobe's exponent
-  double sheen = 0.1;              // the wet tissue's own highlight at its peak
+  double camera_height_mm = 20.0;      // ... and above the panel
+  bool falloff = true;                 // the headlight falls off as a point source's
+  double specular = 1.0;               // the blood's highlight at its peak (linear light)
+  int shininess = 256;                 // its lobe's exponent
+  double sheen = 0.1;                  // the wet tissue's own highlight at its peak
   int sheen_shininess = 32;
 };
 

@@ -20,30 +20,19 @@ ParamProblem sigma_from_radius(BlurParams& b, const Written& written, const Scen
 
 const ParamTable<BlurParams>& blur_table() {
   using P = BlurParams;
-  static const ParamTable<P> table{"blur",
-                                   "declares the blur of the particles' film of blood (needs [particles])",
-                                   {{"downsample",
-                                     ParamType::integer,
-                                     BLEEDSIM_MEMBER(P, downsample),
-                                     "",
-                                     {double(kBlurFactors[0]), double(*std::rbegin(kBlurFactors)), false,
-                                      std::vector<double>(std::begin(kBlurFactors), std::end(kBlurFactors))},
-                                     "the film is blurred at 1/downsample of the panel's resolution"},
-                                    {"radius_px",
-                                     ParamType::integer,
-                                     BLEEDSIM_MEMBER(P, radius_px),
-                                     "downsampled px",
-                                     {0, 64},
-                                     "Gaussian taps either side, in downsampled pixels"},
-                                    {"sigma_px",
-                                     ParamType::number,
-                                     BLEEDSIM_MEMBER(P, sigma_px),
-                                     "downsampled px",
-                                     {0, 64, true},
-                                     "the Gaussian's width, in downsampled pixels",
-                                     "max(0.5, radius_px / 2)"}},
-                                   {},
-                                   sigma_from_radius};
+  const Range factors(kBlurFactors[0], *std::rbegin(kBlurFactors), false,
+                      std::vector<double>(std::begin(kBlurFactors), std::end(kBlurFactors)));
+  static const ParamTable<P> table{
+      "blur",
+      "declares the blur of the particles' film of blood (needs [particles])",
+      {{"downsample", ParamType::integer, BLEEDSIM_MEMBER(P, downsample), "", factors,
+        "the film is blurred at 1/downsample of the panel's resolution"},
+       {"radius_px", ParamType::integer, BLEEDSIM_MEMBER(P, radius_px), "downsampled px", {0, 64},
+        "Gaussian taps either side, in downsampled pixels"},
+       {"sigma_px", ParamType::number, BLEEDSIM_MEMBER(P, sigma_px), "downsampled px", {0, 64, true},
+        "the Gaussian's width, in downsampled pixels", "max(0.5, radius_px / 2)"}},
+      {},
+      sigma_from_radius};
   return table;
 }
 

@@ -83,16 +83,16 @@ void BlurStage::run(const Scene&, State&, Backend& backend) {
 }
 
 const Effect<BlurParams>& blur_effect() {
-  static const Effect<BlurParams> row{
-      blur_table,
-      {{"blur",
-        "blur",
-        declares<BlurParams>,
-        {image_field("blur/thickness", ElementType::f32, 1, "mm",
-                     "the film of blood downsampled, blurred and upsampled: what the blend lays over the tissue")},
-        [](const Scene&) { return std::vector<std::string>{"splat/thickness"}; },
-        BlurStage::memory_for,
-        make_stage<BlurStage>}}};
+  static const Effect<BlurParams> row = [] {
+    Effect<BlurParams> e{blur_table};
+    e.stages = {{"blur", "blur", declares<BlurParams>,
+                 {image_field("blur/thickness", ElementType::f32, 1, "mm",
+                              "the film of blood downsampled, blurred and upsampled: what the blend lays over the "
+                              "tissue")},
+                 [](const Scene&) { return std::vector<std::string>{"splat/thickness"}; }, BlurStage::memory_for,
+                 make_stage<BlurStage>}};
+    return e;
+  }();
   return row;
 }
 

@@ -23,9 +23,12 @@ std::string describe_contact(const Scene& scene, const Resolved& resolved, const
 
 }  // namespace
 
-ContactHook::ContactHook(const Scene& scene, const Resolved& resolved) : path_(scripted_tool(scene.tips)) {
+ContactHook::ContactHook(const Scene& scene, const Resolved& resolved, Backend&, int)
+    : path_(scripted_tool(scene.tips)) {
   args_.tip.body_mm = float(resolved.get<ContactSettings>().body_mm);
 }
+
+MemoryParts ContactHook::memory_for(const Scene&, const Resolved&) { return {}; }
 
 void ContactHook::act(const Scene& scene, State& state, Backend& backend, const ParticleArgs& particles, double t0,
                       double t1) {
@@ -48,16 +51,13 @@ void ContactHook::act_at(Backend& backend, const ParticleArgs& particles, const 
 }
 
 const Effect<ContactParams>& contact_effect() {
-  static const Effect<ContactParams> row{
-      contact_table,
-      {},
-      {{"contact", [](const Scene&, const Resolved&) { return MemoryParts{}; },
-        [](const Scene& scene, const Resolved& resolved, Backend&, int) -> std::unique_ptr<ParticleHook> {
-          return std::make_unique<ContactHook>(scene, resolved);
-        }}},
-      nullptr,
-      resolve_contact,
-      describe_contact};
+  static const Effect<ContactParams> row = [] {
+    Effect<ContactParams> e{contact_table};
+    e.hooks = {{"contact", ContactHook::memory_for, make_hook<ContactHook>}};
+    e.resolve = resolve_contact;
+    e.describe = describe_contact;
+    return e;
+  }();
   return row;
 }
 

@@ -16,7 +16,9 @@ struct ContactSettings {
 
 class ContactHook final : public ParticleHook {
  public:
-  ContactHook(const Scene& scene, const Resolved& resolved);
+  ContactHook(const Scene& scene, const Resolved& resolved, Backend& backend, int capacity);
+  // None: the tip's body is a few numbers of the launch.
+  static MemoryParts memory_for(const Scene& scene, const Resolved& resolved);
   void act(const Scene& scene, State& state, Backend& backend, const ParticleArgs& particles, double t0,
            double t1) override;
   // act's launch, given the tip: where it is (`at`), and where it was dt_s before (its velocity;

@@ -37,11 +37,7 @@ const ParamTable<ContactParams>& contact_table() {
       "contact",
       "declares the instrument's tip a body in the blood: particles part around it and close behind it (needs "
       "[particles], and [haptics] or [[tip]])",
-      {{"tip_radius_mm",
-        ParamType::number,
-        BLEEDSIM_MEMBER(P, tip_radius_mm),
-        "mm",
-        {0, 1e4, true},
+      {{"tip_radius_mm", ParamType::number, BLEEDSIM_MEMBER(P, tip_radius_mm), "mm", {0, 1e4, true},
         "the tip's radius on the panel: no particle's centre comes nearer than this plus its own radius"}},
       {{"the scene has [particles], and an instrument: [haptics] or [[tip]]", contact_acts},
        {"the tip's body, with a particle's radius each side, is narrower than the panel less a particle's "

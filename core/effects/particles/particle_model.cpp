@@ -11,7 +11,9 @@ namespace bleedsim {
 namespace {
 
 // At least one; a panel that holds more cells than 2^64 is uncountable, and refused.
-Count cells_along(double panel_mm, double cell_mm) { return std::max(Count(1), Count::ceil_of(panel_mm / cell_mm)); }
+Count cells_along(double panel_mm, double cell_mm) {
+  return std::max(Count(1), Count::ceil_of(panel_mm / cell_mm));
+}
 
 // Only ever for a scene whose lifetime check passed: at most 2e9 steps.
 std::uint32_t steps_in(double seconds, double steps_per_s) {

@@ -13,24 +13,24 @@ constexpr double kMaxParticleRate = 1.0e8;
 
 // Present in a Scene only when the scene calls for the particles.
 struct ParticleParams {
-  int capacity = 16384;  // ring-buffer slots
+  int capacity = 16384;              // ring-buffer slots
   double diameter_mm = 0.2;
   double particle_volume_mm3 = 0.004;  // the blood one particle stands for (the film it makes)
-  double cell_mm = 0.0;                // grid cell edge; 0: the interaction range
+  double cell_mm = 0.0;              // grid cell edge; 0: the interaction range
   // The wound: blood per second per mm of wound, for how long, and how fast it clots (the cuts'
   // defaults; a cut says how many mm of wound it stands for).
   double flow_mm3_per_s_per_mm = 2.0;
   double bleed_s = 2.0;
-  double clot_s = 0.0;  // the flow falls as exp(−t/clot_s); 0: it does not
+  double clot_s = 0.0;               // the flow falls as exp(−t/clot_s); 0: it does not
   double lifetime_s = 30.0;
-  double fade_s = 1.0;           // the last part of the lifetime, over which a particle fades
-  double gravity_x_mm_s2 = 0.0;  // along the panel; y points down
+  double fade_s = 1.0;               // the last part of the lifetime, over which a particle fades
+  double gravity_x_mm_s2 = 0.0;      // along the panel; y points down
   double gravity_y_mm_s2 = 1000.0;
-  double drag_per_s = 100.0;  // viscous drag against the tissue
+  double drag_per_s = 100.0;         // viscous drag against the tissue
   // The contact: stiff enough that the deepest pile compresses by at most `compression` of a
   // diameter (docs/particles.md derives the stiffness), damped at `damping_ratio` of critical.
   double compression = 0.02;
-  double design_depth_mm = 0.0;  // the deepest pile; 0: what the panel and the capacity allow
+  double design_depth_mm = 0.0;      // the deepest pile; 0: what the panel and the capacity allow
   double damping_ratio = 0.1;
   // Surface tension and the mucosa's grip. Cohesion and pinning are forces per unit length of the
   // film's edge per unit density (mm³/s²): cohesion pulls neighbours within cohesion_range
@@ -40,15 +40,15 @@ struct ParticleParams {
   double cohesion_mm3_s2 = 20.0;
   double cohesion_range = 0.3;
   double pinning_mm3_s2 = 30.0;
-  double yield_mm2_s2 = 50.0;     // the film's yield stress per unit density (mm²/s²)
-  double birth_s = 0.1;           // a new particle is shifted out of overlaps, not pushed, over this
-  double max_speed_mm_s = 100.0;  // no particle moves faster
-  int substeps = 0;               // physics steps per frame; 0: the fewest the contact allows
-  double jitter_mm = 0.05;        // emission position jitter, ±
-  double velocity_x_mm_s = 0.0;   // emission velocity
+  double yield_mm2_s2 = 50.0;         // the film's yield stress per unit density (mm²/s²)
+  double birth_s = 0.1;              // a new particle is shifted out of overlaps, not pushed, over this
+  double max_speed_mm_s = 100.0;     // no particle moves faster
+  int substeps = 0;                  // physics steps per frame; 0: the fewest the contact allows
+  double jitter_mm = 0.05;           // emission position jitter, ±
+  double velocity_x_mm_s = 0.0;      // emission velocity
   double velocity_y_mm_s = 0.0;
   double velocity_jitter_mm_s = 5.0;
-  double splat_radius_mm = 0.0;  // the film's footprint; 0: the diameter
+  double splat_radius_mm = 0.0;      // the film's footprint; 0: the diameter
 };
 
 const ParamTable<ParticleParams>& particle_table();

@@ -225,11 +225,11 @@ void ParticleStage::run(const Scene& scene, State& state, Backend& backend) {
 
 namespace {
 
-void resolve(const Scene& scene, Resolved& resolved) { resolved.set(resolve_particles(scene)); }
+void resolve_settings(const Scene& scene, Resolved& resolved) { resolved.set(resolve_particles(scene)); }
 
 // The particle model as the parameters make it (docs/particles.md): the contact, the time step, the
 // largest drop the mucosa holds, and whether the ring can hold all the blood the cuts give.
-std::string describe(const Scene& scene, const Resolved& resolved, const RunOutline& run) {
+std::string describe_particles(const Scene& scene, const Resolved& resolved, const RunOutline& run) {
   const ParticleParams& p = scene.effects.get<ParticleParams>();
   const ParticleSettings& settings = settings_of(resolved);
   const ParticleMechanics& m = settings.mechanics;
@@ -262,28 +262,25 @@ std::string describe(const Scene& scene, const Resolved& resolved, const RunOutl
 }  // namespace
 
 const Effect<ParticleParams>& particle_effect() {
-  static const Effect<ParticleParams> row{
-      particle_table,
-      {{"particles",
-        "particles",
-        declares<ParticleParams>,
-        {element_field("particles/position", ElementType::f32, 2, true, "mm",
-                       "centre of each ring-buffer slot's particle"),
-         element_field("particles/velocity", ElementType::f32, 2, true, "mm/s", "velocity of each slot's particle"),
-         element_field("particles/age", ElementType::u32, 1, true, "steps",
-                       "steps each slot's particle has lived; a slot holds a live particle while its age is below "
-                       "the lifetime (an aspirated particle's age has its top bit, 2^31, set)"),
-         element_field("particles/accounting", ElementType::u64, 1, false, "particles",
-                       "emitted, alive, expired, overwritten, and with [suction] aspirated: emitted = alive + "
-                       "expired + overwritten (+ aspirated)")},
-        surface_fields,
-        ParticleStage::memory_for,
-        make_stage<ParticleStage>},
-       splat_stage_kind()},
-      {},
-      nullptr,
-      resolve,
-      describe};
+  static const Effect<ParticleParams> row = [] {
+    Effect<ParticleParams> e{particle_table};
+    e.stages = {
+        {"particles", "particles", declares<ParticleParams>,
+         {element_field("particles/position", ElementType::f32, 2, true, "mm",
+                        "centre of each ring-buffer slot's particle"),
+          element_field("particles/velocity", ElementType::f32, 2, true, "mm/s", "velocity of each slot's particle"),
+          element_field("particles/age", ElementType::u32, 1, true, "steps",
+                        "steps each slot's particle has lived; a slot holds a live particle while its age is below "
+                        "the lifetime (an aspirated particle's age has its top bit, 2^31, set)"),
+          element_field("particles/accounting", ElementType::u64, 1, false, "particles",
+                        "emitted, alive, expired, overwritten, and with [suction] aspirated: emitted = alive + "
+                        "expired + overwritten (+ aspirated)")},
+         surface_fields, ParticleStage::memory_for, make_stage<ParticleStage>},
+        splat_stage_kind()};
+    e.resolve = resolve_settings;
+    e.describe = describe_particles;
+    return e;
+  }();
   return row;
 }
 

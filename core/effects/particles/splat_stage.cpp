@@ -69,19 +69,16 @@ void SplatStage::run(const Scene&, State& state, Backend& backend) {
 
 const StageKind& splat_stage_kind() {
   static const StageKind kind{
-      "splat",
-      "particles",
-      declares<ParticleParams>,
-      {image_field(
-          "splat/thickness", ElementType::f32, 1, "mm",
-          "thickness of the film of blood the particles make: each one's volume spread over its splat radius")},
+      "splat", "particles", declares<ParticleParams>,
+      {image_field("splat/thickness", ElementType::f32, 1, "mm",
+                   "thickness of the film of blood the particles make: each one's volume spread over its splat "
+                   "radius")},
       [](const Scene& s) {
         std::vector<std::string> reads{"particles/position", "particles/age"};
         for (const std::string& field : surface_fields(s)) reads.push_back(field);
         return reads;
       },
-      SplatStage::memory_for,
-      make_stage<SplatStage>};
+      SplatStage::memory_for, make_stage<SplatStage>};
   return kind;
 }
 

@@ -17,8 +17,8 @@ ParamProblem flow_stays_forward(const PulseParams& p, const Scene&) {
     return {"dicrotic", "systolic + dicrotic must be below 1, or the flow would stop or reverse in each beat (got " +
                             format_number(p.systolic + p.dicrotic) + ")"};
   if (p.dicrotic >= p.systolic)
-    return {"dicrotic",
-            "must be below systolic (" + format_number(p.systolic) + "): the beat is the waveform's strongest part"};
+    return {"dicrotic", "must be below systolic (" + format_number(p.systolic) +
+                            "): the beat is the waveform's strongest part"};
   return {};
 }
 
@@ -55,29 +55,13 @@ const ParamTable<PulseParams>& pulse_table() {
   static const ParamTable<P> table{
       "pulse",
       "declares a heartbeat: arterial wounds spurt with it, venous ones ooze steadily (needs [particles])",
-      {{"heart_rate_per_min",
-        T::number,
-        BLEEDSIM_MEMBER(P, heart_rate_per_min),
-        "1/min",
-        {0, 300, true},
+      {{"heart_rate_per_min", T::number, BLEEDSIM_MEMBER(P, heart_rate_per_min), "1/min", {0, 300, true},
         "beats a minute; the heart beats from t = 0"},
-       {"systolic",
-        T::number,
-        BLEEDSIM_MEMBER(P, systolic),
-        "",
-        {0, 1},
+       {"systolic", T::number, BLEEDSIM_MEMBER(P, systolic), "", {0, 1},
         "a₁ in w(t) = 1 + a₁ sin(2πft) + a₂ sin(4πft): the beat's swing of the flow about its mean"},
-       {"dicrotic",
-        T::number,
-        BLEEDSIM_MEMBER(P, dicrotic),
-        "",
-        {0, 1},
+       {"dicrotic", T::number, BLEEDSIM_MEMBER(P, dicrotic), "", {0, 1},
         "a₂: the swing at twice the heart rate (the dicrotic shoulder)"},
-       {"arterial_density",
-        T::number,
-        BLEEDSIM_MEMBER(P, arterial_density),
-        "",
-        {0, 1},
+       {"arterial_density", T::number, BLEEDSIM_MEMBER(P, arterial_density), "", {0, 1},
         "with [vessels]: a wound whose mean vessel density reaches this is arterial (cuts may also say so)"}},
       {{"systolic + dicrotic < 1 and dicrotic < systolic: the flow never stops, and the beat dominates",
         flow_stays_forward},
@@ -88,7 +72,11 @@ const ParamTable<PulseParams>& pulse_table() {
 }
 
 const Effect<PulseParams>& pulse_effect() {
-  static const Effect<PulseParams> row{pulse_table, {}, {}, nullptr, nullptr, describe_pulse};
+  static const Effect<PulseParams> row = [] {
+    Effect<PulseParams> e{pulse_table};
+    e.describe = describe_pulse;
+    return e;
+  }();
   return row;
 }
 

@@ -78,14 +78,7 @@ SpreadSettle SpreadStage::settle_box(const Scene& scene, const SpreadCut* cuts, 
   const PixelGrid grid = scene.domain.grid();
   PixelBox box{grid.width, 0, grid.height, 0};
   for (int c = 0; c < count; ++c) box = united(box, stain_box(host_[c], grid, reach_per_mm_));
-  return {cuts,
-          count,
-          grid,
-          settled_.as<float>(),
-          {},
-          box.i0,
-          box.j0,
-          std::max(0, box.i1 - box.i0),
+  return {cuts, count, grid, settled_.as<float>(), {}, box.i0, box.j0, std::max(0, box.i1 - box.i0),
           std::max(0, box.j1 - box.j0)};
 }
 
@@ -124,17 +117,15 @@ void SpreadStage::run(const Scene& scene, State& state, Backend& backend) {
 }
 
 const Effect<SpreadParams>& spread_effect() {
-  static const Effect<SpreadParams> row{
-      spread_table,
-      {{"spread",
-        "spread",
-        declares<SpreadParams>,
-        {image_field("spread/stain", ElementType::f32, 1, "1",
-                     "radial-spread stain: the share of a full stain (report 2.2.1), drawn as stain_depth_mm of "
-                     "blood")},
-        surface_fields,
-        SpreadStage::memory_for,
-        make_stage<SpreadStage>}}};
+  static const Effect<SpreadParams> row = [] {
+    Effect<SpreadParams> e{spread_table};
+    e.stages = {{"spread", "spread", declares<SpreadParams>,
+                 {image_field("spread/stain", ElementType::f32, 1, "1",
+                              "radial-spread stain: the share of a full stain (report 2.2.1), drawn as "
+                              "stain_depth_mm of blood")},
+                 surface_fields, SpreadStage::memory_for, make_stage<SpreadStage>}};
+    return e;
+  }();
   return row;
 }
 

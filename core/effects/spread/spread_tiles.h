@@ -58,10 +58,10 @@ class SpreadUpload {
   int live_ = 0;
   int across_ = 0;
   std::size_t first_at_ = 0, cut_at_ = 0;  // where first_ and cut_ lie in the block
-  std::vector<TileBox> reached_;           // per live cut
-  std::vector<int> first_;                 // the table: tiles + 1 offsets ...
-  std::vector<int> cut_;                   // ... into the live cuts' indices
-  std::vector<int> next_;                  // per tile, where its next index goes while listing
+  std::vector<TileBox> reached_;  // per live cut
+  std::vector<int> first_;        // the table: tiles + 1 offsets ...
+  std::vector<int> cut_;          // ... into the live cuts' indices
+  std::vector<int> next_;         // per tile, where its next index goes while listing
   std::vector<unsigned char> bytes_;
 };
 

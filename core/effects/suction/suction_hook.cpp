@@ -105,16 +105,13 @@ std::vector<float> suction_sweep(const Scene& scene, const State& state, double 
 }
 
 const Effect<SuctionParams>& suction_effect() {
-  static const Effect<SuctionParams> row{suction_table,
-                                         {},
-                                         {{"suction", SuctionHook::memory_for,
-                                           [](const Scene& scene, const Resolved& resolved, Backend& backend,
-                                              int capacity) -> std::unique_ptr<ParticleHook> {
-                                             return std::make_unique<SuctionHook>(scene, resolved, backend, capacity);
-                                           }}},
-                                         nullptr,
-                                         resolve_suction,
-                                         describe_suction};
+  static const Effect<SuctionParams> row = [] {
+    Effect<SuctionParams> e{suction_table};
+    e.hooks = {{"suction", SuctionHook::memory_for, make_hook<SuctionHook>}};
+    e.resolve = resolve_suction;
+    e.describe = describe_suction;
+    return e;
+  }();
   return row;
 }
 

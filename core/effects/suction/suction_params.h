@@ -12,9 +12,9 @@ struct Effect;
 
 // Present in a Scene only when the scene calls for suction; needs [particles] and an instrument.
 struct SuctionParams {
-  double radius_mm = 1.5;            // particle centres within this of the tip are within reach
-  double max_flow_mm3_per_s = 30.0;  // the most blood it takes a second
-  std::uint8_t buttons = 0x2;        // with the stylus: the grip buttons that turn it on, in contact
+  double radius_mm = 1.5;             // particle centres within this of the tip are within reach
+  double max_flow_mm3_per_s = 30.0;   // the most blood it takes a second
+  std::uint8_t buttons = 0x2;         // with the stylus: the grip buttons that turn it on, in contact
 };
 
 const ParamTable<SuctionParams>& suction_table();

@@ -47,18 +47,14 @@ std::vector<std::string> surface_fields(const Scene& scene) {
 
 const StageKind& surface_stage_kind() {
   static const StageKind kind{
-      "surface",
-      "tissue",
-      [](const Scene& s) { return s.mesh != nullptr; },
+      "surface", "tissue", [](const Scene& s) { return s.mesh != nullptr; },
       {on_request(image_field("surface/frame", ElementType::f32, kSurfaceFrameChannels, "mm/mm",
                               "the tissue mesh's map from panel to surface mm at each texel, (a, b, c): a panel step "
                               "(dx, dy) goes (a dx + b dy, c dy) on the surface; and 1 where a triangle covers the "
                               "texel")),
        on_request(image_field("surface/gravity", ElementType::f32, kSurfaceGravityChannels, "mm/s²",
                               "gravity along the tissue mesh's surface at each texel, in the frame of surface/frame"))},
-      no_fields,
-      SurfaceStage::memory_for,
-      make_stage<SurfaceStage>};
+      no_fields, SurfaceStage::memory_for, make_stage<SurfaceStage>};
   return kind;
 }
 

@@ -9,8 +9,8 @@ struct Effect;
 
 // Present in a Scene only when the scene calls for trails; needs [particles].
 struct TrailParams {
-  double residue = 0.1;    // of the film that passes, left behind as an equivalent film
-  double drying_s = 20.0;  // the residue's time constant
+  double residue = 0.1;     // of the film that passes, left behind as an equivalent film
+  double drying_s = 20.0;   // the residue's time constant
 };
 
 const ParamTable<TrailParams>& trail_table();

@@ -44,9 +44,8 @@ void sweep_trail(TrailPixel& work, const float* on_backend, const std::vector<fl
   }
   // Grown by the reach and a margin far beyond float32's rounding of a distance there (a few units
   // in the last place of the coordinates): the bounds only skip pixels no segment reaches.
-  const double margin =
-      reach_mm + 1e-3 +
-      1e-4 * (reach_mm + std::max({std::fabs(low[0]), std::fabs(low[1]), std::fabs(high[0]), std::fabs(high[1])}));
+  const double margin = reach_mm + 1e-3 + 1e-4 * (reach_mm + std::max({std::fabs(low[0]), std::fabs(low[1]),
+                                                                          std::fabs(high[0]), std::fabs(high[1])}));
   for (int a = 0; a < 2; ++a) {
     work.sweep_box[a] = float(low[a] - margin);
     work.sweep_box[2 + a] = float(high[a] + margin);
@@ -80,16 +79,15 @@ void TrailStage::run(const Scene& scene, State& state, Backend& backend) {
 }
 
 const Effect<TrailParams>& trail_effect() {
-  static const Effect<TrailParams> row{
-      trail_table,
-      {{"trail",
-        "trail",
-        declares<TrailParams>,
-        {image_field("trail/residue", ElementType::f32, 1, "mm",
-                     "the blood that ran over each pixel, left behind as an equivalent film and drying")},
-        [](const Scene&) { return std::vector<std::string>{"splat/thickness"}; },
-        TrailStage::memory_for,
-        make_stage<TrailStage>}}};
+  static const Effect<TrailParams> row = [] {
+    Effect<TrailParams> e{trail_table};
+    e.stages = {{"trail", "trail", declares<TrailParams>,
+                 {image_field("trail/residue", ElementType::f32, 1, "mm",
+                              "the blood that ran over each pixel, left behind as an equivalent film and drying")},
+                 [](const Scene&) { return std::vector<std::string>{"splat/thickness"}; }, TrailStage::memory_for,
+                 make_stage<TrailStage>}};
+    return e;
+  }();
   return row;
 }
 

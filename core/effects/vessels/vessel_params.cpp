@@ -41,11 +41,7 @@ const ParamTable<VesselParams>& vessel_table() {
       "vessels",
       "declares vessel-driven bleeding: each cut bleeds in proportion to the vessel density along its wound "
       "(needs [particles])",
-      {{"map",
-        ParamType::text,
-        BLEEDSIM_MEMBER(P, map),
-        "",
-        {},
+      {{"map", ParamType::text, BLEEDSIM_MEMBER(P, map), "", {},
         "\"procedural\": the vessels the procedural tissue draws; else a PNG file (relative to the scenario "
         "file), its red channel (a grey PNG's grey) the density from 0 to 255, resampled to the panel's pixels"}},
       {{"the scene has [particles]", bleeding_needs_particles}}};
@@ -53,7 +49,12 @@ const ParamTable<VesselParams>& vessel_table() {
 }
 
 const Effect<VesselParams>& vessel_effect() {
-  static const Effect<VesselParams> row{vessel_table, {}, {}, with_vessels, nullptr, describe_vessels};
+  static const Effect<VesselParams> row = [] {
+    Effect<VesselParams> e{vessel_table};
+    e.as_made = with_vessels;
+    e.describe = describe_vessels;
+    return e;
+  }();
   return row;
 }
 
