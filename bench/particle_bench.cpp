@@ -117,6 +117,8 @@ Scene pile_scene(int n) {
   // No particle expires while it is measured: a day (the most a scene may ask), or 1e9 steps.
   const double steps_per_s = resolve_particles(p, scene).steps_per_s;
   p.lifetime_s = std::min(86400.0, 1.0e9 / steps_per_s);
+  // Awake throughout: a step's cost whatever has come to rest.
+  p.rest_s = 0.0;
   return scene;
 }
 
@@ -128,10 +130,10 @@ struct Pile {
   int threads;  // the CPU all-pairs baseline's, as many as the CPU backend's
   Scene scene;
   ParticleArgs args{};
-  Buffer position, velocity, age, scratch, emitters, plan;
+  Buffer position, velocity, age, rest, anchor, scratch, emitters, plan;
   std::vector<Emitter> cuts;              // the emit burst's, on the host as a scene plans them
   std::unique_ptr<TwinCache> step_cache;  // what a backend keeps between whole steps
-  Buffer settled_position, settled_velocity, settled_age;
+  Buffer settled_position, settled_velocity, settled_age, settled_rest, settled_anchor;
   std::string problem;  // why it cannot be measured (empty when it can)
   int settle_steps = 0;
   double ke_per_particle = 0.0;  // ½|v|² per unit mass, mm²/s², mean over the particles
@@ -162,9 +164,13 @@ struct Pile {
     position = backend->allocate(pairs);
     velocity = backend->allocate(pairs);
     age = backend->allocate(words);
+    rest = backend->allocate(words);
+    anchor = backend->allocate(pairs);
     a.position = position.as<float>();
     a.velocity = velocity.as<float>();
     a.age = age.as<std::uint32_t>();
+    a.rest = rest.as<std::uint32_t>();
+    a.anchor = anchor.as<float>();
     const std::size_t sort_bytes = backend->particle_sort_scratch_bytes(n, cell_count(model));
     scratch = backend->allocate(particle_scratch_bytes(cell_count(model), n, sort_bytes));
     point_particle_scratch(a, cell_count(model), scratch.data(), sort_bytes);
@@ -204,9 +210,13 @@ struct Pile {
     settled_position = backend->allocate(pairs);
     settled_velocity = backend->allocate(pairs);
     settled_age = backend->allocate(words);
+    settled_rest = backend->allocate(words);
+    settled_anchor = backend->allocate(pairs);
     copy(settled_position.data(), a.position, pairs);
     copy(settled_velocity.data(), a.velocity, pairs);
     copy(settled_age.data(), a.age, words);
+    copy(settled_rest.data(), a.rest, words);
+    copy(settled_anchor.data(), a.anchor, pairs);
     backend->synchronize();
 
     // The instrument: its tip one suction radius under the pile's surface (its highest centre), at
@@ -269,12 +279,14 @@ struct Pile {
     return taken;
   }
 
-  // Back to the settled pile: the state a phase changes (positions, velocities, ages).
+  // Back to the settled pile: the state a phase changes (positions, velocities, ages, rest, anchors).
   void restore() {
     const std::size_t pairs = 2 * std::size_t(n) * sizeof(float), words = std::size_t(n) * sizeof(std::uint32_t);
     copy(args.arrays.position, settled_position.data(), pairs);
     copy(args.arrays.velocity, settled_velocity.data(), pairs);
     copy(args.arrays.age, settled_age.data(), words);
+    copy(args.arrays.rest, settled_rest.data(), words);
+    copy(args.arrays.anchor, settled_anchor.data(), pairs);
   }
 
  private:

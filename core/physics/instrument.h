@@ -138,7 +138,7 @@ BLEEDSIM_HD inline Spot nearest_outside_disc(float x, float y, float cx, float c
 
 // A live particle whose centre is inside the tip's body is put on its edge (or the nearest free
 // point of the panel), and its velocity relative to the tip loses its part along the body's
-// normal into it: the blood parts around the tip and flows on along it.
+// normal into it: the blood parts around the tip and flows on along it. What it moves wakes.
 BLEEDSIM_HD inline void keep_out_of_tip(const InstrumentArgs& a, int slot) {
   const ParticleArrays& p = a.arrays;
   const ParticleModel& m = a.model;
@@ -149,6 +149,9 @@ BLEEDSIM_HD inline void keep_out_of_tip(const InstrumentArgs& a, int slot) {
   const Spot to = nearest_outside_disc(x, y, tip.x_mm, tip.y_mm, tip.body_mm, m.min_x, m.max_x, m.min_y, m.max_y);
   p.position[2 * slot] = to.x;
   p.position[2 * slot + 1] = to.y;
+  p.rest[slot] = 0;  // moved: awake, its rest to begin here
+  p.anchor[2 * slot] = to.x;
+  p.anchor[2 * slot + 1] = to.y;
   // The normal at the new spot, out of the body; the velocity's approach along it is removed.
   const float nx0 = to.x - tip.x_mm, ny0 = to.y - tip.y_mm, n = sqrtf(nx0 * nx0 + ny0 * ny0);
   if (!(n > 0.0f)) return;

@@ -64,6 +64,9 @@ struct ParticleModel {
   float drag_divisor;      // 1 + drag·dt: drag taken implicitly, so it never destabilises
   float max_speed;         // mm/s
   float max_speed_sq;
+  float rest_distance_sq;  // mm²: a particle that stays this close to where it stopped is at rest ...
+  std::uint32_t rest_steps;  // ... and asleep once at rest this many steps in a row (0: never)
+  float wake_speed_sq;     // (mm/s)²: a neighbour faster than this within the range wakes a sleeper
   float min_x, max_x;      // where a centre may be: the panel less one radius (in panel mm)
   float min_y, max_y;
   float cell_mm;           // grid cell edge in panel mm, ≥ the range on the surface
@@ -77,6 +80,11 @@ struct ParticleModel {
   std::uint64_t seed;
   SurfaceMap surface;      // the tissue mesh's maps; empty on the flat panel
 };
+
+// What collide finds around a particle, for integrate: it is on the film's edge; a neighbour within
+// the range moves faster than the wake speed.
+constexpr std::uint32_t kOnEdge = 1u;
+constexpr std::uint32_t kStirred = 2u;
 
 // A slot whose age is at least the lifetime holds no particle; a slot never written holds this.
 constexpr std::uint32_t kNeverUsed = 0xffffffffu;
@@ -101,9 +109,11 @@ struct ParticleArrays {
   float* position;           // mm
   float* velocity;           // mm/s
   std::uint32_t* age;        // steps lived
+  std::uint32_t* rest;       // steps at rest in a row, up to the model's rest_steps: asleep there
+  float* anchor;             // mm: where its rest began
   float* acceleration;       // contact acceleration, collide → integrate
   float* shift;              // mm: the move that undoes overlaps with new particles, collide → integrate
-  std::uint32_t* on_edge;    // 1 where it is on the film's edge, collide → integrate
+  std::uint32_t* neighbourhood;  // what collide found around it (kOnEdge, kStirred), collide → integrate
   std::uint32_t* cell_key;   // the bin's keys: per slot (CPU); the t-th live slot's (CUDA)
   std::uint32_t* sorted_key;
   std::uint32_t* sorted_slot;
@@ -265,6 +275,8 @@ BLEEDSIM_HD inline void emit_particle(const ParticleArgs& a, int t) {
            {m.velocity_x * from.speed_scale + m.velocity_jitter * jitter(2),
             m.velocity_y * from.speed_scale + m.velocity_jitter * jitter(3)});
   a.arrays.age[slot] = 0;
+  a.arrays.rest[slot] = 0;
+  set_pair(a.arrays.anchor, slot, {x, y});
 }
 
 // Which of this step's new particles a slot receives (new_count: none). Their ids run on from the
@@ -352,6 +364,7 @@ struct PairSums {
   float hx = 0.0f, hy = 0.0f;  // mm: half of each overlap with a new particle, away from it
   float sx = 0.0f, sy = 0.0f;  // the directions to the neighbours, weighted as the cohesion
   float company = 0.0f;        // the weights
+  float fastest_sq = 0.0f;     // (mm/s)²: the fastest neighbour's speed
 };
 
 // The pair force on a particle from the one at offset (dx, dy) = p − q from it (per unit mass, on the
@@ -381,6 +394,7 @@ BLEEDSIM_HD inline void add_pair(const ParticleModel& m, float dx, float dy, flo
     coincident_direction(slot, other, &nx, &ny);
   }
   const float share = cohesion_share(m, r);
+  sums->fastest_sq = max_float(sums->fastest_sq, wx * wx + wy * wy);
   sums->sx += share * nx;
   sums->sy += share * ny;
   sums->company += share;
@@ -403,8 +417,8 @@ BLEEDSIM_HD inline void add_pair(const ParticleModel& m, float dx, float dy, flo
 }
 
 // A particle's acceleration and shift from its pair sums, the shift no longer than birth_speed·dt
-// (so a burst parts at no more than that speed), and whether it is on the film's edge: its
-// neighbours all on one side, or too few to surround it.
+// (so a burst parts at no more than that speed); whether it is on the film's edge (its neighbours
+// all on one side, or too few to surround it) and whether a neighbour moves fast enough to wake it.
 BLEEDSIM_HD inline void finish_pair_sums(const ParticleArrays& p, const ParticleModel& m, std::uint32_t slot,
                                          const PairSums& sums) {
   float hx = sums.hx, hy = sums.hy;
@@ -416,8 +430,9 @@ BLEEDSIM_HD inline void finish_pair_sums(const ParticleArrays& p, const Particle
   }
   set_pair(p.acceleration, slot, {sums.ax, sums.ay});
   set_pair(p.shift, slot, {hx, hy});
-  p.on_edge[slot] = sums.sx * sums.sx + sums.sy * sums.sy > m.edge_openness * m.edge_openness ||
-                    sums.company < m.edge_company;
+  const bool on_edge = sums.sx * sums.sx + sums.sy * sums.sy > m.edge_openness * m.edge_openness ||
+                       sums.company < m.edge_company;
+  p.neighbourhood[slot] = (on_edge ? kOnEdge : 0u) | (sums.fastest_sq > m.wake_speed_sq ? kStirred : 0u);
 }
 
 // The sorted positions [begin, end) of the particles in cells x0 … x1 of row y: the cells of a row
@@ -470,8 +485,8 @@ BLEEDSIM_HD inline void collide_particle(const ParticleArrays& p, const Particle
 
 // The mucosa's grip on a particle: static friction up to the yield for every particle, and up to
 // the pinning besides for one on the film's edge, where the contact line holds.
-BLEEDSIM_HD inline float grip(const ParticleModel& m, std::uint32_t on_edge) {
-  return on_edge ? m.yield + m.pinning : m.yield;
+BLEEDSIM_HD inline float grip(const ParticleModel& m, std::uint32_t neighbourhood) {
+  return (neighbourhood & kOnEdge) ? m.yield + m.pinning : m.yield;
 }
 
 // An aspirated particle ages in its slot, and is counted when its lifetime runs out, as the
@@ -485,6 +500,36 @@ BLEEDSIM_HD inline void age_aspirated(const ParticleArrays& p, const ParticleMod
   if (((age + 1) & ~kAspirated) == m.lifetime.steps) count_one(&p.fates->expired);
 }
 
+// Blood that has stopped sleeps (docs/particles.md#rest). A particle that has stayed within
+// rest_distance of one spot for the model's rest_steps in a row is asleep: it stays where it is, at
+// no speed, until something moves around it: a neighbour within the range faster than the wake
+// speed, a new particle overlapping it (its shift), the tip (which wakes what it moves), or a force
+// past twice its grip (a neighbour taken away by suction or by its lifetime, gravity turned). A
+// sleeper's own force does not wake it short of that: frozen among frozen neighbours it is the
+// same every step, and freezing a creeping particle changes its dashpots' pull by the damping
+// times its creep. Without sleep, static friction held every particle whose force it balanced, but
+// a pile whose particles crept below any visible speed rearranged itself until it avalanched,
+// seconds after it had stopped. Rest is a distance, not a speed: a pile at rest rings at the
+// contact's frequency with nanometres of amplitude, which a speed test of each step sees.
+BLEEDSIM_HD inline bool asleep(const ParticleModel& m, std::uint32_t rest) {
+  return m.rest_steps > 0 && rest >= m.rest_steps;
+}
+
+// The grip as the step takes it is grip·(1 + γ·dt): a particle held by its grip is within it.
+BLEEDSIM_HD inline bool stays_asleep(const ParticleModel& m, float fx, float fy, std::uint32_t neighbourhood,
+                                     FloatPair shift) {
+  const float most = 2.0f * grip(m, neighbourhood) * m.drag_divisor;
+  return (neighbourhood & kStirred) == 0u && fx * fx + fy * fy <= most * most && shift.x == 0.0f &&
+         shift.y == 0.0f;
+}
+
+// Steps at rest in a row after a step that ended `moved` from the anchor: counted up to
+// rest_steps, or 0 when it has left the anchor (which then moves to where it is).
+BLEEDSIM_HD inline std::uint32_t rest_after(const ParticleModel& m, std::uint32_t rest, FloatPair moved) {
+  if (moved.x * moved.x + moved.y * moved.y > m.rest_distance_sq) return 0;
+  return rest < m.rest_steps ? rest + 1 : m.rest_steps;
+}
+
 // Semi-implicit Euler: the new velocity from gravity and contacts, drag taken implicitly; then the
 // grip as friction taken implicitly (Coulomb): it removes up to grip·dt of the speed, and holds a
 // particle it can stop, so the film comes to rest instead of creeping; then capped at the speed
@@ -492,6 +537,7 @@ BLEEDSIM_HD inline void age_aspirated(const ParticleArrays& p, const ParticleMod
 // panel's edges stop a particle and take the speed it had into them (blood does not bounce). On a
 // mesh, gravity is the surface's at the particle's texel, the move is taken back to the panel through
 // that texel's frame, and a move off the surface is not made: the particle stops where it was.
+// A sleeper that stays asleep only ages; one that falls asleep stops.
 BLEEDSIM_HD inline void integrate_particle(const ParticleArrays& p, const ParticleModel& m, int slot) {
   const std::uint32_t age = p.age[slot];
   if (!is_alive(m, age)) {
@@ -508,10 +554,17 @@ BLEEDSIM_HD inline void integrate_particle(const ParticleArrays& p, const Partic
     gy = m.surface.gravity[kSurfaceGravityChannels * texel + 1];
   }
   const FloatPair v0 = pair_at(p.velocity, std::size_t(slot)), a = pair_at(p.acceleration, std::size_t(slot));
+  const FloatPair shift = pair_at(p.shift, std::size_t(slot));
+  const std::uint32_t neighbourhood = p.neighbourhood[slot];
+  const std::uint32_t rest = p.rest[slot];
+  if (asleep(m, rest) && stays_asleep(m, gx + a.x, gy + a.y, neighbourhood, shift)) {
+    p.age[slot] = age + 1;
+    return;
+  }
   float vx = (v0.x + m.dt_s * (gx + a.x)) / m.drag_divisor;
   float vy = (v0.y + m.dt_s * (gy + a.y)) / m.drag_divisor;
   const float speed_sq = vx * vx + vy * vy;
-  const float held = grip(m, p.on_edge[slot]) * m.dt_s;
+  const float held = grip(m, neighbourhood) * m.dt_s;
   if (speed_sq <= held * held) {
     vx = 0.0f;
     vy = 0.0f;
@@ -521,7 +574,6 @@ BLEEDSIM_HD inline void integrate_particle(const ParticleArrays& p, const Partic
     vx *= kept;
     vy *= kept;
   }
-  const FloatPair shift = pair_at(p.shift, std::size_t(slot));
   float mx = vx, my = vy, sx = shift.x, sy = shift.y;
   if (curved(m.surface)) {
     to_panel(frame, vx, vy, &mx, &my);
@@ -539,9 +591,18 @@ BLEEDSIM_HD inline void integrate_particle(const ParticleArrays& p, const Partic
     vx = 0.0f;
     vy = 0.0f;
   }
+  // Awake from here on: a sleeper that woke starts counting again.
+  const FloatPair anchor = pair_at(p.anchor, std::size_t(slot));
+  const std::uint32_t rest_now = rest_after(m, asleep(m, rest) ? 0 : rest, {x - anchor.x, y - anchor.y});
+  if (rest_now == 0) set_pair(p.anchor, std::size_t(slot), {x, y});
+  if (asleep(m, rest_now)) {
+    vx = 0.0f;
+    vy = 0.0f;
+  }
   set_pair(p.position, std::size_t(slot), {x, y});
   set_pair(p.velocity, std::size_t(slot), {vx, vy});
   p.age[slot] = age + 1;
+  p.rest[slot] = rest_now;
 }
 
 // ---- fade --------------------------------------------------------------------------------------

@@ -77,9 +77,13 @@ class ParticleBox {
     position_ = cpu_->allocate(2 * n_ * sizeof(float));
     velocity_ = cpu_->allocate(2 * n_ * sizeof(float));
     age_ = cpu_->allocate(n_ * sizeof(std::uint32_t));
+    rest_ = cpu_->allocate(n_ * sizeof(std::uint32_t));
+    anchor_ = cpu_->allocate(2 * n_ * sizeof(float));
     a.position = position_.as<float>();
     a.velocity = velocity_.as<float>();
     a.age = age_.as<std::uint32_t>();
+    a.rest = rest_.as<std::uint32_t>();
+    a.anchor = anchor_.as<float>();
     scratch_ = cpu_->allocate(particle_scratch_bytes(cell_count(model_), n_, 0));
     point_particle_scratch(a, cell_count(model_), scratch_.data(), 0);
     clear_particles(*cpu_, a);
@@ -93,7 +97,12 @@ class ParticleBox {
     args_.first_live_slot = 0;
   }
 
-  const ParticleModel& model() const { return model_; }
+  const ParticleModel& model() const { return args_.model; }
+  // Gravity changed under the particles (a tilted panel), from the next step on.
+  void set_gravity(float x_mm_s2, float y_mm_s2) {
+    args_.model.gravity_x = x_mm_s2;
+    args_.model.gravity_y = y_mm_s2;
+  }
   const ParticleArrays& arrays() const { return args_.arrays; }
   int size() const { return n_; }
   double dt() const { return model_.dt_s; }
@@ -123,7 +132,7 @@ class ParticleBox {
   std::unique_ptr<Backend> cpu_;
   int n_;
   SurfaceMaps maps_;
-  Buffer position_, velocity_, age_, scratch_;
+  Buffer position_, velocity_, age_, rest_, anchor_, scratch_;
   ParticleArgs args_{};
 };
 

@@ -186,40 +186,36 @@ TEST(ParticleHardCases, CrowdedCells) {
   run_and_check("crowded-cells", std::move(scene), expect, &r);
 }
 
-// ---- the default panel comes to rest ------------------------------------------------------------
+// ---- the default panel comes to rest, and stays at rest -----------------------------------------
 
-// The issue's bound: 95 % of the particles below 0.1 mm/s within 3 s of the last emission, on the
-// default scenario's panel (the scene run on to that time). The grip holds what drag has slowed
-// (docs/particles.md, "Coming to rest"): a particle on the mucosa stops once its share of the
-// weight is under the yield, and a pool's edge is pinned. Whether one late drop is still creeping
-// when the clock stops is chaos (it depends on where each particle's rounding put it), so the
-// bound is on the ensemble: the particles of four seeds pooled, and each seed's share reported.
-TEST(ParticleRest, TheDefaultPanelStopsWithinThreeSecondsOfTheLastEmission) {
+// Issue 36's bound: from 2 s after the last emission to the end of the scene, at every frame, no
+// live particle moves faster than 0.1 mm/s, on the default scenario over four seeds. Blood that
+// has stopped sleeps (docs/particles.md#rest) at exactly no speed, so the bound asks that every
+// flow on the panel has stopped by then and that nothing stopped starts again: no late avalanche
+// of a pile that had crept, no drop that restarts. Each seed must hold it, not their pool.
+TEST(ParticleRest, TheDefaultPanelStaysStoppedFromTwoSecondsAfterTheLastEmission) {
   const Scene base = load_scenario((fs::path(test::source_dir()) / "scenarios" / "default.toml").string()).scene;
   double last_emission = 0.0;
   for (const Cut& cut : base.cuts) last_emission = std::max(last_emission, cut.start_s + cut.bleed_s);
-  constexpr double kWithin = 3.0, kSlow = 0.1, kShare = 0.95;
-  long pooled_alive = 0, pooled_still = 0;
+  constexpr double kAfter = 2.0, kSlow = 0.1;
+  ASSERT_GT(base.duration_s, last_emission + kAfter + 1.0);
   for (const std::uint64_t seed : {1, 2, 3, 4}) {
     Scene scene = base;
     scene.seed = seed;
-    scene.duration_s = last_emission + kWithin;
     const ParticleModel m = resolve_particles(scene).model;
     Simulation sim(scene, kCpu);
-    while (sim.frames_done() < scene.frame_count()) sim.step();
-    const Particles p(sim);
-    int alive = 0, still = 0;
-    for (int s = 0; s < p.slots(); ++s) {
-      if (!is_alive(m, p.age[s])) continue;
-      ++alive;
-      still += std::hypot(p.velocity[2 * s], p.velocity[2 * s + 1]) < kSlow;
+    double fastest = 0.0, when = 0.0;
+    while (sim.frames_done() < scene.frame_count()) {
+      sim.step();
+      if (sim.time_s() < last_emission + kAfter) continue;
+      const Particles p(sim);
+      for (int s = 0; s < p.slots(); ++s)
+        if (is_alive(m, p.age[s]) && p.speed(s) > fastest) fastest = p.speed(s), when = sim.time_s();
     }
-    std::cout << "seed " << seed << ": " << 100.0 * still / std::max(alive, 1) << " % of " << alive << " below "
-              << kSlow << " mm/s " << kWithin << " s after the last emission at " << last_emission << " s" << std::endl;
-    pooled_alive += alive;
-    pooled_still += still;
+    std::cout << "seed " << seed << ": fastest " << fastest << " mm/s from " << last_emission + kAfter << " s"
+              << (fastest > 0 ? " (at " + std::to_string(when) + " s)" : "") << std::endl;
+    EXPECT_LE(fastest, kSlow) << "seed " << seed;
   }
-  EXPECT_GE(double(pooled_still) / double(pooled_alive), kShare);
 }
 
 }  // namespace

@@ -179,14 +179,16 @@ TEST(ParticleEmit, EachNewParticleLeavesFromItsOwnCut) {
   m.jitter_mm = 0.0f;
   m.velocity_jitter = 0.0f;
   constexpr int kCapacity = 2048;
-  std::vector<float> position(2 * kCapacity), velocity(2 * kCapacity);
-  std::vector<std::uint32_t> age(kCapacity, kNeverUsed);
+  std::vector<float> position(2 * kCapacity), velocity(2 * kCapacity), anchor(2 * kCapacity);
+  std::vector<std::uint32_t> age(kCapacity, kNeverUsed), rest(kCapacity, 7u);
   ParticleArgs a{};
   a.model = m;
   a.arrays.capacity = kCapacity;
   a.arrays.position = position.data();
   a.arrays.velocity = velocity.data();
   a.arrays.age = age.data();
+  a.arrays.rest = rest.data();
+  a.arrays.anchor = anchor.data();
   for (const int cuts : {1, 2, 3, 64, 257}) {
     std::vector<Emitter> emitters;
     std::uint32_t first_new = 0;
@@ -205,6 +207,7 @@ TEST(ParticleEmit, EachNewParticleLeavesFromItsOwnCut) {
         ASSERT_EQ(position[2 * slot], cut.x_mm) << cuts << " cuts, new particle " << cut.first_new + k;
         ASSERT_EQ(position[2 * slot + 1], cut.y_mm) << cuts << " cuts, new particle " << cut.first_new + k;
         ASSERT_EQ(age[slot], 0u);
+        ASSERT_EQ(rest[slot], 0u) << "a new particle is awake";
       }
   }
 }
@@ -215,14 +218,16 @@ TEST(ParticleEmit, EachNewParticleLeavesFromItsOwnCut) {
 // new particle and every other slot names none.
 TEST(ParticleEmit, EachSlotKnowsTheNewParticleItReceives) {
   constexpr int kCapacity = 60;  // not a power of two, so that a wrong modulus shows
-  std::vector<float> position(2 * kCapacity), velocity(2 * kCapacity);
-  std::vector<std::uint32_t> age(kCapacity);
+  std::vector<float> position(2 * kCapacity), velocity(2 * kCapacity), anchor(2 * kCapacity);
+  std::vector<std::uint32_t> age(kCapacity), rest(kCapacity);
   ParticleArgs a{};
   a.model = pair_model();
   a.arrays.capacity = kCapacity;
   a.arrays.position = position.data();
   a.arrays.velocity = velocity.data();
   a.arrays.age = age.data();
+  a.arrays.rest = rest.data();
+  a.arrays.anchor = anchor.data();
   for (const std::uint64_t first_id : {0ull, 50ull, 59ull, 60ull, 1000003ull})
     for (const std::uint32_t cuts : {0u, 1u, 3u, 15u}) {
       std::vector<Emitter> emitters;

@@ -115,7 +115,8 @@ TEST(Pipeline, RunsEachStageAfterTheStagesWhoseFieldsItReads) {
   const Simulation sim(scene, kCpu);
   EXPECT_EQ(sim.field_names(),
             (std::vector<std::string>{"spread/stain", "particles/position", "particles/velocity", "particles/age",
-                                      "particles/accounting", "splat/thickness", "blur/thickness", "frame"}));
+                                      "particles/rest", "particles/anchor", "particles/accounting",
+                                      "splat/thickness", "blur/thickness", "frame"}));
 }
 
 // The blend reads the stain and the film the scene makes, and nothing it does not.

@@ -9,7 +9,9 @@ rounding:
 - for scenes with a [particles] table (docs/particles.md), the accounting (emitted, alive,
   expired, overwritten) replayed id by id from the emission schedule, the ring buffer and the
   lifetime; which ring slots hold the live particles and their ages; every live centre inside the
-  panel less a radius;
+  panel less a radius; rest (docs/particles.md#rest): every live particle within the rest distance
+  of its anchor, at it when its count is 0, the count at most its age and the rest steps, and a
+  sleeper (count at the rest steps) at exactly no speed;
 - the film of blood (splat/thickness, mm) recomputed from the stored positions and ages: each live
   particle shares its blood, V · fade, among the pixels whose centres lie at d < R from it in
   proportion to (1 − d²/R²)², or puts it all into the pixel holding its centre where it reaches
@@ -241,8 +243,8 @@ def check_scene(root, golden, name, params):
         has_trail = has_particles and "trail" in scenario
         wanted_fields = ((["surface/frame", "surface/gravity"] if mesh is not None else []) +
                          (["spread/stain"] if has_spread else []) +
-                         (["particles/position", "particles/velocity", "particles/age", "particles/accounting",
-                           "splat/thickness"] if has_particles else []) +
+                         (["particles/position", "particles/velocity", "particles/age", "particles/rest",
+                           "particles/anchor", "particles/accounting", "splat/thickness"] if has_particles else []) +
                          (["blur/thickness"] if has_blur else []) + (["trail/residue"] if has_trail else []) +
                          ["frame"])
         stored_fields = f.attrs["fields"].split()

@@ -48,6 +48,29 @@ def steps_in(seconds, steps_per_s):
     return max(1, math.floor(seconds * steps_per_s + 0.5))
 
 
+def check_rest(settings, k, live, age, rest, position, anchor, velocity, problems):
+    """Rest's invariants (docs/particles.md#rest) at key frame k, over the live slots: a step that left
+    a particle more than the rest distance from its anchor moved the anchor to it and zeroed its
+    count, so each is within the distance of its anchor (float32's rounding of the distance
+    allowed) and at it when its count is 0; the count rises at most one a step from 0 at its birth
+    and stops at the rest steps; a sleeper, at the rest steps, has no speed at all."""
+    rest, steps = rest[live].astype(np.int64), settings["rest_steps"]
+    p, a, v = position[live].astype(np.float64), anchor[live].astype(np.float64), velocity[live]
+    away = np.hypot(*(p - a).T)
+    far = away > settings["rest_distance"] * (1 + 1e-6) + np.spacing(np.float32(np.abs(p).max(initial=1)))
+    moved = (rest == 0) & (away != 0)
+    counted = (rest > np.minimum(age[live], steps))
+    awake_still = (steps > 0) & (rest == steps) & (v != 0).any(axis=1)
+    for what, bad in [("further than the rest distance from their anchor", far),
+                      ("at a count of 0 away from their anchor", moved),
+                      ("counted at rest longer than they lived or past the rest steps", counted),
+                      ("asleep with a speed", awake_still)]:
+        if bad.any():
+            s = np.flatnonzero(live)[np.flatnonzero(bad)[0]]
+            problems.append(f"key frame {k}: {bad.sum()} live particles {what} (slot {s}: rest {rest[bad][0]}, "
+                            f"at {tuple(position[s])}, anchor {tuple(anchor[s])})")
+
+
 def particle_settings(scenario):
     """The [particles] table's settings (its defaults filled in by scenario_defaults.py)."""
     p = scenario["particles"]
@@ -55,6 +78,7 @@ def particle_settings(scenario):
     steps_per_s = scenario["scene"]["frame_rate_hz"] * substeps
     lifetime = steps_in(p["lifetime_s"], steps_per_s)
     diameter = p["diameter_mm"]
+    rest_steps = steps_in(min(p["rest_s"], p["lifetime_s"]), steps_per_s) if p["rest_s"] > 0 else 0
     return {
         "capacity": p["capacity"],
         "radius": diameter / 2.0,
@@ -64,6 +88,8 @@ def particle_settings(scenario):
         "steps_per_s": steps_per_s,
         "lifetime": lifetime,
         "fade": min(lifetime, steps_in(p["fade_s"], steps_per_s)),
+        "rest_steps": rest_steps,
+        "rest_distance": p["rest_speed_mm_s"] * p["rest_s"],
         "cuts": scenario["cut"],   # each with its vessel density (golden_bleeding.with_vessels)
         "pulse": scenario.get("pulse"),
     }
@@ -312,6 +338,7 @@ def check_particles(scenario, f, keys, problems, notes, quota=None, frame=None):
     capacity, lifetime, r = settings["capacity"], settings["lifetime"], settings["radius"]
     counts, ages = f["particles/accounting"][:], f["particles/age"][:]
     positions, velocities, films = f["particles/position"][:], f["particles/velocity"][:], f["splat/thickness"][:]
+    rests, anchors = f["particles/rest"][:], f["particles/anchor"][:]
     step_of_id = emission_steps(settings, (max(keys) + 1) * settings["substeps"])
     panel = (scene["width_mm"], scene["height_mm"])
     bound_slack = float(np.spacing(np.float32(max(panel))))   # the bound is stored as a float32
@@ -359,6 +386,7 @@ def check_particles(scenario, f, keys, problems, notes, quota=None, frame=None):
         never = np.arange(capacity) >= emitted
         if (slot_age[never] != NEVER_USED).any() or positions[i][never].any() or velocities[i][never].any():
             problems.append(f"key frame {k}: a slot that never held a particle is not age 2^32-1 at rest at (0, 0)")
+        check_rest(settings, k, live, slot_age, rests[i], positions[i], anchors[i], velocities[i], problems)
         # 3. Live centres inside the panel less a radius (on a mesh: on the surface, inside the panel).
         p = positions[i][live].astype(np.float64)
         if frame is not None:

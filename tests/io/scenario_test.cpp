@@ -382,7 +382,7 @@ TEST(ScenarioBadInput, OutputFieldWithAnUnknownName) {
   EXPECT_TRUE(refused_at(kBase + "fields = [\n  \"spread/stain\",\n  \"spread/blood\",\n]\n", kEnd + 2,
                          "output.fields[1]",
                          "unknown field 'spread/blood' (known: surface/frame, surface/gravity, spread/stain, particles/position, particles/velocity, particles/age, "
-                         "particles/accounting, splat/thickness, blur/thickness, trail/residue; the frame is always written)"));
+                         "particles/rest, particles/anchor, particles/accounting, splat/thickness, blur/thickness, trail/residue; the frame is always written)"));
 }
 
 TEST(ScenarioBadInput, OutputFieldOfAnEffectTheSceneDoesNotDeclare) {

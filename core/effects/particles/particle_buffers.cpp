@@ -8,7 +8,7 @@ namespace {
 
 // Offsets of the scratch arrays, one after another, each aligned for vector loads.
 struct ScratchLayout {
-  std::size_t acceleration, shift, on_edge, cell_key, sorted_key, sorted_slot, sorted_position, sorted_velocity,
+  std::size_t acceleration, shift, neighbourhood, cell_key, sorted_key, sorted_slot, sorted_position, sorted_velocity,
       sorted_age, cell_start, fates, sort_scratch, total;
 
   ScratchLayout(std::size_t cells, int capacity, std::size_t sort_scratch_bytes) {
@@ -21,7 +21,7 @@ struct ScratchLayout {
     };
     acceleration = take(2 * n * sizeof(float));
     shift = take(2 * n * sizeof(float));
-    on_edge = take(n * sizeof(std::uint32_t));
+    neighbourhood = take(n * sizeof(std::uint32_t));
     cell_key = take(n * sizeof(std::uint32_t));
     sorted_key = take(n * sizeof(std::uint32_t));
     sorted_slot = take(n * sizeof(std::uint32_t));
@@ -50,7 +50,7 @@ void point_particle_scratch(ParticleArrays& a, std::size_t cells, void* base, st
   const ScratchLayout layout(cells, a.capacity, sort_scratch_bytes);
   a.acceleration = at_offset<float>(base, layout.acceleration);
   a.shift = at_offset<float>(base, layout.shift);
-  a.on_edge = at_offset<std::uint32_t>(base, layout.on_edge);
+  a.neighbourhood = at_offset<std::uint32_t>(base, layout.neighbourhood);
   a.cell_key = at_offset<std::uint32_t>(base, layout.cell_key);
   a.sorted_key = at_offset<std::uint32_t>(base, layout.sorted_key);
   a.sorted_slot = at_offset<std::uint32_t>(base, layout.sorted_slot);
@@ -68,10 +68,12 @@ void clear_particles(Backend& backend, const ParticleArrays& a) {
   const std::vector<float> zeros(2 * n, 0.0f);
   backend.upload(a.position, zeros.data(), 2 * n * sizeof(float));
   backend.upload(a.velocity, zeros.data(), 2 * n * sizeof(float));
+  backend.upload(a.anchor, zeros.data(), 2 * n * sizeof(float));
   backend.upload(a.acceleration, zeros.data(), 2 * n * sizeof(float));
   backend.upload(a.shift, zeros.data(), 2 * n * sizeof(float));
   std::vector<std::uint32_t> words(n, 0u);
-  backend.upload(a.on_edge, words.data(), n * sizeof(std::uint32_t));
+  backend.upload(a.neighbourhood, words.data(), n * sizeof(std::uint32_t));
+  backend.upload(a.rest, words.data(), n * sizeof(std::uint32_t));
   std::fill(words.begin(), words.end(), kNeverUsed);
   backend.upload(a.age, words.data(), n * sizeof(std::uint32_t));
   const AspiratedFates none{};

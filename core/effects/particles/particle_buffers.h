@@ -8,7 +8,7 @@
 
 namespace bleedsim {
 
-// Bytes of every ParticleArrays member that is not state (position, velocity, age), for
+// Bytes of every ParticleArrays member that is not state (position, velocity, age, rest, anchor), for
 // `capacity` particles on a grid of `cells` cells (cell_count() of the model) with
 // `sort_scratch_bytes` of sort storage.
 std::size_t particle_scratch_bytes(std::size_t cells, int capacity, std::size_t sort_scratch_bytes);

@@ -118,6 +118,12 @@ const ParamTable<ParticleParams>& particle_table() {
         "pushing it: a burst parts without a blast"},
        {"max_speed_mm_s", T::number, BLEEDSIM_MEMBER(P, max_speed_mm_s), "mm/s", {0, 1e5, true},
         "speed limit: no particle moves faster; with the sub-step, less than half a diameter a step"},
+       {"rest_speed_mm_s", T::number, BLEEDSIM_MEMBER(P, rest_speed_mm_s), "mm/s", {0, 1e5},
+        "blood that moves less than this × rest_s in rest_s has stopped and sleeps, until a neighbour moves "
+        "at twice this (or the tip, a new particle or a force past twice its grip disturbs it)"},
+       {"rest_s", T::number, BLEEDSIM_MEMBER(P, rest_s), "s", {0, 86400},
+        "how long blood stays within rest_speed_mm_s × rest_s of one spot before it sleeps; blood never sleeps "
+        "when this is 0 or at least lifetime_s"},
        {"substeps", T::integer, BLEEDSIM_MEMBER(P, substeps), "", {0, double(kMaxSubsteps)},
         "physics steps per frame, inside the contact's stability limit", "0: the fewest inside the limit"},
        {"jitter_mm", T::number, BLEEDSIM_MEMBER(P, jitter_mm), "mm", {0, 100},

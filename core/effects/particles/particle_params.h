@@ -43,6 +43,11 @@ struct ParticleParams {
   double yield_mm2_s2 = 50.0;         // the film's yield stress per unit density (mm²/s²)
   double birth_s = 0.1;              // a new particle is shifted out of overlaps, not pushed, over this
   double max_speed_mm_s = 100.0;     // no particle moves faster
+  // Rest: blood that moves less than rest_speed_mm_s × rest_s in rest_s has stopped, and sleeps until
+  // a neighbour moves at twice that speed, or the tip, a new particle or a force past twice its grip
+  // disturbs it (docs/particles.md#rest). rest_s = 0: it never sleeps.
+  double rest_speed_mm_s = 0.2;
+  double rest_s = 0.25;
   int substeps = 0;                  // physics steps per frame; 0: the fewest the contact allows
   double jitter_mm = 0.05;           // emission position jitter, ±
   double velocity_x_mm_s = 0.0;      // emission velocity

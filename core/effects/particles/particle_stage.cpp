@@ -98,10 +98,14 @@ ParticleStage::ParticleStage(const StageKind& kind, const Scene& scene, const Re
   Field& position = add_field(scene, state, backend, "particles/position", capacity);
   Field& velocity = add_field(scene, state, backend, "particles/velocity", capacity);
   Field& age = add_field(scene, state, backend, "particles/age", capacity);
+  Field& rest = add_field(scene, state, backend, "particles/rest", capacity);
+  Field& anchor = add_field(scene, state, backend, "particles/anchor", capacity);
   counts_ = &add_field(scene, state, backend, "particles/accounting", accounting_elements(scene));
   a.position = position.data.as<float>();
   a.velocity = velocity.data.as<float>();
   a.age = age.data.as<std::uint32_t>();
+  a.rest = rest.data.as<std::uint32_t>();
+  a.anchor = anchor.data.as<float>();
 
   const std::size_t sort_bytes = backend.particle_sort_scratch_bytes(capacity, cell_count(model));
   scratch_ = allocate(backend, particle_scratch_bytes(cell_count(model), capacity, sort_bytes));
@@ -118,7 +122,7 @@ MemoryParts ParticleStage::memory_for(const Scene& scene, const Resolved& resolv
   const ParticleParams& p = scene.effects.get<ParticleParams>();
   const std::size_t n = std::size_t(p.capacity);
   const std::size_t fields =
-      n * (2 * sizeof(float) + 2 * sizeof(float) + sizeof(std::uint32_t)) + sizeof(ParticleCounts);
+      n * (3 * 2 * sizeof(float) + 2 * sizeof(std::uint32_t)) + sizeof(ParticleCounts);
   // The scratch is per slot and per grid cell: its grid part is what the cells add to it. The cell
   // count is below kMaxGridCells once the scene's checks have passed.
   const Count grid_cells = settings_of(resolved).cells;
@@ -246,6 +250,13 @@ std::string describe_particles(const Scene& scene, const Resolved& resolved, con
   else
     text += "the mucosa holds drops up to " + g3(drop.volume_mm3) + " mm³ (radius " + g3(drop.radius_mm) +
             " mm) against gravity\n";
+  const ParticleModel& model = settings.model;
+  if (model.rest_steps == 0 || model.rest_steps >= model.lifetime.steps)
+    text += "  rest       blood never sleeps (rest_s is 0 or at least lifetime_s)\n";
+  else
+    text += "  rest       blood that moves less than " + g3(p.rest_speed_mm_s * p.rest_s) + " mm in " + g3(p.rest_s) +
+            " s (" + std::to_string(model.rest_steps) + " steps) sleeps until a neighbour moves at " +
+            g3(2.0 * p.rest_speed_mm_s) + " mm/s\n";
   // The ring overwrites live blood when more can be alive at once than it has slots: a cut has at
   // most what it bleeds in its first lifetime alive (its flow only falls).
   double alive = 0;
@@ -272,6 +283,11 @@ const Effect<ParticleParams>& particle_effect() {
           element_field("particles/age", ElementType::u32, 1, true, "steps",
                         "steps each slot's particle has lived; a slot holds a live particle while its age is below "
                         "the lifetime (an aspirated particle's age has its top bit, 2^31, set)"),
+          element_field("particles/rest", ElementType::u32, 1, true, "steps",
+                        "steps each slot's particle has been at rest in a row, up to the model's rest steps, "
+                        "where it sleeps (docs/particles.md#rest)"),
+          element_field("particles/anchor", ElementType::f32, 2, true, "mm",
+                        "where each slot's particle began its rest: it is at rest while it stays close to it"),
           element_field("particles/accounting", ElementType::u64, 1, false, "particles",
                         "emitted, alive, expired, overwritten, and with [suction] aspirated: emitted = alive + "
                         "expired + overwritten (+ aspirated)")},
