@@ -229,6 +229,29 @@ TEST(Validate, DescribesTheParticlesAndWarnsWhenTheRingWillOverwriteLiveBlood) {
   EXPECT_EQ(large.output.find("warning"), std::string::npos) << large.output;
 }
 
+// The film is one particle thick: a hexagonal layer of 0.2 mm particles over a W × H mm panel is
+// W·H / (√3/2 · 0.04) of them. The cut above puts 1000 on the panel at once: a 4 × 4 mm panel holds
+// 461.9 (a warning naming the flow, still valid), a 6 × 6 mm one 1039.2 (none).
+TEST(Validate, WarnsWhenThePanelGetsMoreBloodThanOneLayerOfFilmHolds) {
+  const fs::path dir = scratch_folder();
+  const auto scene_of_side = [&](int side_mm) {
+    const fs::path file = dir / ("layer-" + std::to_string(side_mm) + ".toml");
+    write_text(file, "[scene]\nname = \"layer\"\nwidth_px = 40\nheight_px = 40\nwidth_mm = " + std::to_string(side_mm) +
+                         ".0\nheight_mm = " + std::to_string(side_mm) +
+                         ".0\nduration_s = 1.0\n[particles]\n[[cut]]\nx_mm = 2.0\ny_mm = 1.0\n");
+    return run_cli("validate '" + file.string() + "'");
+  };
+  const CliResult small = scene_of_side(4);
+  ASSERT_EQ(small.exit_code, 0) << small.output;
+  EXPECT_NE(small.output.find("warning: particles.flow_mm3_per_s_per_mm: the cuts can have 1000 particles on the "
+                              "panel at once, more than the one layer of film it holds (462 of 0.2 mm"),
+            std::string::npos)
+      << small.output;
+  const CliResult large = scene_of_side(6);
+  ASSERT_EQ(large.exit_code, 0) << large.output;
+  EXPECT_EQ(large.output.find("warning"), std::string::npos) << large.output;
+}
+
 // The bleeding effects and the instrument as validate describes them, from the files: suction-pass's
 // scripted tip (2 points, 2.5 to 4 s), its reach 1.2 mm and 8 mm³/s, its body 0.6 + 0.2 / 2 mm; the
 // stylus' suction on the second button (0x2) in falcon-suction; vessels-pulse's map and threshold.

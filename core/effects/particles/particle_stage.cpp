@@ -267,6 +267,15 @@ std::string describe_particles(const Scene& scene, const Resolved& resolved, con
     text += "warning: the cuts can have up to " + format_fixed(alive, 0) + " particles alive at once (what each " +
             "bleeds within a " + g3(p.lifetime_s) + " s lifetime), more than the ring's " + std::to_string(p.capacity) +
             " slots: it will overwrite live blood; raise [particles].capacity or shorten lifetime_s\n";
+  // The film is one particle thick: the panel holds a hexagonal layer of them, and blood past that is
+  // squeezed into the layer, past the contact's design (docs/particles.md#incompressible-at-any-depth).
+  const double layer = scene.domain.width_mm * scene.domain.height_mm / (std::sqrt(3.0) / 2.0 * p.diameter_mm * p.diameter_mm);
+  const double on_panel = std::min(alive, double(p.capacity));
+  if (on_panel > layer)
+    text += "warning: particles.flow_mm3_per_s_per_mm: the cuts can have " + format_fixed(on_panel, 0) +
+            " particles on the panel at once, more than the one layer of film it holds (" + format_fixed(layer, 0) +
+            " of " + g3(p.diameter_mm) + " mm, " + g3(m.film_mm) + " mm thick): the film cannot thicken, so the pile " +
+            "is squeezed past its design compression; bleed less, or use a larger panel or shorter lifetime_s\n";
   return text;
 }
 
