@@ -8,6 +8,7 @@ import math
 import numpy as np
 
 from golden_bleeding import blood_given_mm3
+from golden_rest import check_rest
 from scenario_defaults import particle_substeps
 
 EDGE_MM = 1e-5           # a pixel centre this close to a splat's edge may fall either side in float32
@@ -46,29 +47,6 @@ def pixel_centres(scene):
 def steps_in(seconds, steps_per_s):
     """Whole steps in a span (rounded half up, at least one): the model's lifetime and fade."""
     return max(1, math.floor(seconds * steps_per_s + 0.5))
-
-
-def check_rest(settings, k, live, age, rest, position, anchor, velocity, problems):
-    """Rest's invariants (docs/particles.md#rest) at key frame k, over the live slots: a step that left
-    a particle more than the rest distance from its anchor moved the anchor to it and zeroed its
-    count, so each is within the distance of its anchor (float32's rounding of the distance
-    allowed) and at it when its count is 0; the count rises at most one a step from 0 at its birth
-    and stops at the rest steps; a sleeper, at the rest steps, has no speed at all."""
-    rest, steps = rest[live].astype(np.int64), settings["rest_steps"]
-    p, a, v = position[live].astype(np.float64), anchor[live].astype(np.float64), velocity[live]
-    away = np.hypot(*(p - a).T)
-    far = away > settings["rest_distance"] * (1 + 1e-6) + np.spacing(np.float32(np.abs(p).max(initial=1)))
-    moved = (rest == 0) & (away != 0)
-    counted = (rest > np.minimum(age[live], steps))
-    awake_still = (steps > 0) & (rest == steps) & (v != 0).any(axis=1)
-    for what, bad in [("further than the rest distance from their anchor", far),
-                      ("at a count of 0 away from their anchor", moved),
-                      ("counted at rest longer than they lived or past the rest steps", counted),
-                      ("asleep with a speed", awake_still)]:
-        if bad.any():
-            s = np.flatnonzero(live)[np.flatnonzero(bad)[0]]
-            problems.append(f"key frame {k}: {bad.sum()} live particles {what} (slot {s}: rest {rest[bad][0]}, "
-                            f"at {tuple(position[s])}, anchor {tuple(anchor[s])})")
 
 
 def particle_settings(scenario):

@@ -206,7 +206,7 @@ ParticleSettings resolve_particles(const ParticleParams& p, const Scene& scene) 
   m.rest_distance_sq = float(rest_distance * rest_distance);
   // At most the lifetime, whose steps are countable: a particle cannot rest longer than it lives.
   m.rest_steps = p.rest_s > 0.0 ? steps_in(std::min(p.rest_s, p.lifetime_s), 1.0 / dt) : 0u;
-  const double wake_speed = 2.0 * p.rest_speed_mm_s;
+  const double wake_speed = kWakeSpeedFactor * p.rest_speed_mm_s;
   m.wake_speed_sq = float(wake_speed * wake_speed);
   m.min_x = float(margin);
   m.max_x = float(scene.domain.width_mm - margin);

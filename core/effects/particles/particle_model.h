@@ -16,6 +16,9 @@ namespace bleedsim {
 // The contacts the stability limit allows for: six in a hexagonal pile, and a margin for the seven
 // or eight that particles reach where a pile is overloaded or crowds against a wall.
 constexpr int kDesignContacts = 8;
+// A sleeper wakes when a neighbour moves faster than this many times the rest speed: above the
+// creep that put it to sleep, so that two creeping neighbours do not keep waking each other.
+constexpr double kWakeSpeedFactor = 2.0;
 
 // The most sub-steps a frame may take ([particles].substeps, and the fewest the limit asks for).
 constexpr int kMaxSubsteps = 100000;

@@ -256,7 +256,7 @@ std::string describe_particles(const Scene& scene, const Resolved& resolved, con
   else
     text += "  rest       blood that moves less than " + g3(p.rest_speed_mm_s * p.rest_s) + " mm in " + g3(p.rest_s) +
             " s (" + std::to_string(model.rest_steps) + " steps) sleeps until a neighbour moves at " +
-            g3(2.0 * p.rest_speed_mm_s) + " mm/s\n";
+            g3(kWakeSpeedFactor * p.rest_speed_mm_s) + " mm/s\n";
   // The ring overwrites live blood when more can be alive at once than it has slots: a cut has at
   // most what it bleeds in its first lifetime alive (its flow only falls).
   double alive = 0;
