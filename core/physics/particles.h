@@ -67,8 +67,11 @@ struct ParticleModel {
   float rest_distance_sq;  // mm²: a particle that stays this close to where it stopped is at rest ...
   std::uint32_t rest_steps;  // ... and asleep once at rest this many steps in a row (0: never)
   float wake_speed_sq;     // (mm/s)²: a neighbour faster than this within the range wakes a sleeper
-  float min_x, max_x;      // where a centre may be: the panel less one radius (in panel mm)
+  float min_x, max_x;      // where a centre touches a wall: the panel less one radius (in panel mm)
   float min_y, max_y;
+  float wall_stiffness;    // 1/s²: a wall's push per mm a centre is past its line ...
+  float wall_damping_divisor;  // ... and 1 + c_w·dt: its dashpot, critical and taken implicitly
+  float wall_give;         // mm: the furthest past a wall's line a centre is let go, a backstop
   float cell_mm;           // grid cell edge in panel mm, ≥ the range on the surface
   int cells_x;
   int cells_y;
@@ -500,6 +503,35 @@ BLEEDSIM_HD inline void age_aspirated(const ParticleArrays& p, const ParticleMod
   if (((age + 1) & ~kAspirated) == m.lifetime.steps) count_one(&p.fates->expired);
 }
 
+// The panel's edges are walls with the contact's spring (docs/particles.md#walls), not a clamp: a
+// centre past a wall's line (where its particle touches the wall) by δ is pushed back by
+// wall_stiffness·δ. A clamp held a pile's bottom row exactly on the line, where the pile's weight
+// squeezed it along the wall. The wall's dashpot is critical and taken implicitly, like the drag
+// (wall_damped): at the pair's ζ = 0.1 blood met a wall with a restitution of 0.73, and blood does
+// not bounce; explicitly, a critical dashpot would break the step's damping limit.
+BLEEDSIM_HD inline float wall_push(const ParticleModel& m, float past) {
+  return past > 0.0f ? m.wall_stiffness * past : 0.0f;
+}
+
+// The four walls' springs on a centre at (x, y), in panel mm.
+BLEEDSIM_HD inline FloatPair wall_acceleration(const ParticleModel& m, float x, float y) {
+  return {wall_push(m, m.min_x - x) - wall_push(m, x - m.max_x), wall_push(m, m.min_y - y) - wall_push(m, y - m.max_y)};
+}
+
+// A velocity (the surface's, in `frame`) with the dashpots of the walls a centre at (x, y) is past,
+// along each wall's normal.
+BLEEDSIM_HD inline void wall_damped(const ParticleModel& m, const SurfaceFrame& frame, float x, float y, float* vx,
+                                    float* vy) {
+  const bool on_x_wall = x < m.min_x || x > m.max_x, on_y_wall = y < m.min_y || y > m.max_y;
+  if (!on_x_wall && !on_y_wall) return;
+  float px = *vx, py = *vy;
+  if (curved(m.surface)) to_panel(frame, *vx, *vy, &px, &py);
+  if (on_x_wall) px /= m.wall_damping_divisor;
+  if (on_y_wall) py /= m.wall_damping_divisor;
+  if (curved(m.surface)) to_surface(frame, px, py, vx, vy);
+  else *vx = px, *vy = py;
+}
+
 // Blood that has stopped sleeps (docs/particles.md#rest). A particle that has stayed within
 // rest_distance of one spot for the model's rest_steps in a row is asleep: it stays where it is, at
 // no speed, until something moves around it: a neighbour within the range faster than the wake
@@ -530,13 +562,15 @@ BLEEDSIM_HD inline std::uint32_t rest_after(const ParticleModel& m, std::uint32_
   return rest < m.rest_steps ? rest + 1 : m.rest_steps;
 }
 
-// Semi-implicit Euler: the new velocity from gravity and contacts, drag taken implicitly; then the
-// grip as friction taken implicitly (Coulomb): it removes up to grip·dt of the speed, and holds a
-// particle it can stop, so the film comes to rest instead of creeping; then capped at the speed
-// limit. The new position from the new velocity, and the shift away from new particles. The
-// panel's edges stop a particle and take the speed it had into them (blood does not bounce). On a
-// mesh, gravity is the surface's at the particle's texel, the move is taken back to the panel through
-// that texel's frame, and a move off the surface is not made: the particle stops where it was.
+// Semi-implicit Euler: the new velocity from gravity, contacts and the walls, drag and the walls'
+// dashpots taken implicitly;
+// then the grip as friction taken implicitly (Coulomb): it removes up to grip·dt of the speed, and
+// holds a particle it can stop, so the film comes to rest instead of creeping; then capped at the
+// speed limit. The new position from the new velocity, and the shift away from new particles; the
+// backstop, wall_give past a wall's line, stops a particle there. On a mesh, gravity is the
+// surface's at the particle's texel, the walls' push is taken into that texel's frame and the move
+// back to the panel through it, and a move off the surface is not made: the particle stops where
+// it was.
 // A sleeper that stays asleep only ages; one that falls asleep stops.
 BLEEDSIM_HD inline void integrate_particle(const ParticleArrays& p, const ParticleModel& m, int slot) {
   const std::uint32_t age = p.age[slot];
@@ -554,15 +588,19 @@ BLEEDSIM_HD inline void integrate_particle(const ParticleArrays& p, const Partic
     gy = m.surface.gravity[kSurfaceGravityChannels * texel + 1];
   }
   const FloatPair v0 = pair_at(p.velocity, std::size_t(slot)), a = pair_at(p.acceleration, std::size_t(slot));
+  FloatPair wall = wall_acceleration(m, x0, y0);
+  if (curved(m.surface)) to_surface(frame, wall.x, wall.y, &wall.x, &wall.y);
+  const float fx = gx + a.x + wall.x, fy = gy + a.y + wall.y;
   const FloatPair shift = pair_at(p.shift, std::size_t(slot));
   const std::uint32_t neighbourhood = p.neighbourhood[slot];
   const std::uint32_t rest = p.rest[slot];
-  if (asleep(m, rest) && stays_asleep(m, gx + a.x, gy + a.y, neighbourhood, shift)) {
+  if (asleep(m, rest) && stays_asleep(m, fx, fy, neighbourhood, shift)) {
     p.age[slot] = age + 1;
     return;
   }
-  float vx = (v0.x + m.dt_s * (gx + a.x)) / m.drag_divisor;
-  float vy = (v0.y + m.dt_s * (gy + a.y)) / m.drag_divisor;
+  float vx = (v0.x + m.dt_s * fx) / m.drag_divisor;
+  float vy = (v0.y + m.dt_s * fy) / m.drag_divisor;
+  wall_damped(m, frame, x0, y0, &vx, &vy);
   const float speed_sq = vx * vx + vy * vy;
   const float held = grip(m, neighbourhood) * m.dt_s;
   if (speed_sq <= held * held) {
@@ -581,10 +619,10 @@ BLEEDSIM_HD inline void integrate_particle(const ParticleArrays& p, const Partic
   }
   float x = x0 + m.dt_s * mx + sx;
   float y = y0 + m.dt_s * my + sy;
-  if (x < m.min_x) { x = m.min_x; vx = max_float(vx, 0.0f); }
-  if (x > m.max_x) { x = m.max_x; vx = min_float(vx, 0.0f); }
-  if (y < m.min_y) { y = m.min_y; vy = max_float(vy, 0.0f); }
-  if (y > m.max_y) { y = m.max_y; vy = min_float(vy, 0.0f); }
+  if (x < m.min_x - m.wall_give) { x = m.min_x - m.wall_give; vx = max_float(vx, 0.0f); }
+  if (x > m.max_x + m.wall_give) { x = m.max_x + m.wall_give; vx = min_float(vx, 0.0f); }
+  if (y < m.min_y - m.wall_give) { y = m.min_y - m.wall_give; vy = max_float(vy, 0.0f); }
+  if (y > m.max_y + m.wall_give) { y = m.max_y + m.wall_give; vy = min_float(vy, 0.0f); }
   if (curved(m.surface) && !on_surface(m.surface, x, y)) {
     x = x0;
     y = y0;

@@ -3,8 +3,10 @@
 // and bleeding_hard_test.cpp). run_and_check() runs a scene on the CPU reference and asserts after
 // every frame
 //   * every slot's position and velocity finite, live or not;
-//   * every live particle inside the panel, min_x ≤ x ≤ max_x and min_y ≤ y ≤ max_y: nothing
-//     leaves through a wall or falls through the floor;
+//   * every live particle's centre no further past a wall's line (min_x ≤ x ≤ max_x, min_y ≤ y ≤
+//     max_y: where it touches the wall) than wall_reach_mm(): nothing leaves through a wall or
+//     falls through the floor, and the walls, contacts with the pair's law (docs/particles.md#walls),
+//     give no more than their design allows;
 //   * the accounting exact: emitted = alive + expired + overwritten + aspirated (aspirated only
 //     in a scene with [suction]), and alive = the number of slots whose age is below the lifetime,
 //     counted from the age field;
@@ -71,9 +73,18 @@ struct Crowding {
 // contact model; after min_age steps the contacts have had time to push it out.
 Crowding measure_crowding(const ParticleModel& m, const Particles& p, std::uint32_t min_age);
 
-// The first thing wrong with one frame's particles (finite, inside the panel, the accounting), or
-// "" when all holds.
-std::string frame_problem(const ParticleModel& m, const Particles& p);
+// How far past a wall's line a centre may be pressed (docs/particles.md#walls): the design
+// compression ε·d, the most the deepest pile presses into its floor, and v_max/√k_w besides, how far a
+// particle at the speed limit sinks into the wall's spring with its kinetic energy (½v² = ½k_w·δ²;
+// the wall's dashpot only shortens it).
+double wall_reach_mm(const Scene& scene);
+
+// How far the deepest live centre is past a wall's line, mm (0: none touches a wall).
+double deepest_into_a_wall_mm(const ParticleModel& m, const Particles& p);
+
+// The first thing wrong with one frame's particles (finite, within wall_reach_mm of the walls, the
+// accounting), or "" when all holds.
+std::string frame_problem(const ParticleModel& m, const Particles& p, double wall_reach_mm);
 
 // The scripted tip where the instrument puts it after `steps_done` sub-steps (at steps_done /
 // steps_per_s, computed as the particle stage computes it), when it is there; and its body's
@@ -116,6 +127,7 @@ struct RunSummary {
   double unbounded_overlap_mm = 0.0;  // the frames before Expect::overlap_unbounded_until_s
   double rest_overlap_mm = 0.0;       // the deepest in the last quarter after the particles were left alone
   double max_speed = 0.0;             // mm/s, any frame
+  double into_wall_mm = 0.0;          // the deepest any centre went past a wall's line, any frame
   int tip_frames = 0;                 // frames checked for particles inside the tip
   double energy_at_stop = 0.0;        // the first frame at or after the particles were left alone
   double energy_at_end = 0.0;

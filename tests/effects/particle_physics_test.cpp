@@ -165,13 +165,19 @@ struct PileDepth {
   double bottom_mean;  // mean overlap of the bottom five rows' contacts, in diameters
   double deepest;      // the deepest overlap anywhere, in diameters
   double fastest;      // mm/s
+  double into_wall;    // the deepest centre past a wall's line, in diameters
 };
 
 // A hexagonal block of `rows` rows, 20 particles wide, in a panel just its height, settled for a
 // second: the contact is made stiff for that pile (design depth: the panel), so its bottom rows'
 // mean overlap is at most 2/3 of `compression` (a hexagonal column carries rows·g/√3 on each lower
 // contact, and k ≥ g·H/(ε·d²) with H = rows·(√3/2)·d), and the pile being ordered, every bottom
-// contact carries the same: nowhere more than the issue's tenth of a diameter.
+// contact carries the same: nowhere more than the issue's tenth of a diameter. The floor, a wall
+// with √3 the pair's stiffness, bears each bottom particle's column, rows·g, where each of its two
+// upper contacts bears rows·g/√3: it gives as they do, ⅔ε on average; the issue asks that nowhere
+// does any wall give more than ε, which leaves room for a column at the side walls bearing half as
+// much again as the mean (the side walls themselves bear less: the sideways part of the 60°
+// contacts only).
 PileDepth settle_pile(double diameter_mm, int rows) {
   ParticleParams p = fluid_without_grip();
   p.diameter_mm = diameter_mm;
@@ -181,12 +187,16 @@ PileDepth settle_pile(double diameter_mm, int rows) {
   Scene scene = test::box_scene(columns * diameter_mm, rows * row + diameter_mm, p);
   test::ParticleBox box(scene, test::hex_block(scene, columns, rows, 0.0, 1.0));
   box.run_for(1.0);
-  PileDepth out{0, 0, 0};
+  PileDepth out{0, 0, 0, 0};
+  const ParticleModel& m = box.model();
   double bottom_sum = 0;
   int bottom_count = 0;
   const double floor_y = scene.domain.height_mm - diameter_mm / 2;
   for (int i = 0; i < box.size(); ++i) {
     out.fastest = std::max(out.fastest, box.speed(i));
+    const test::Point at = box.position(i);
+    out.into_wall = std::max({out.into_wall, (m.min_x - at.x) / diameter_mm, (at.x - m.max_x) / diameter_mm,
+                              (m.min_y - at.y) / diameter_mm, (at.y - m.max_y) / diameter_mm});
     for (int j = i + 1; j < box.size(); ++j) {
       const double r = std::hypot(box.position(i).x - box.position(j).x, box.position(i).y - box.position(j).y);
       if (r >= diameter_mm) continue;
@@ -208,8 +218,10 @@ TEST(ParticlePile, HoldsItsDensityAtDepthAtEveryParticleSize) {
   for (const double d : {0.8, 0.4 * r, 0.4, 0.2 * r, 0.2, 0.1 * r, 0.1}) {
     const PileDepth pile = settle_pile(d, 100);
     std::cout << "d " << d << " mm: bottom rows' mean overlap " << 100 * pile.bottom_mean << "% of d, deepest "
-              << 100 * pile.deepest << "%, fastest " << pile.fastest << " mm/s" << std::endl;
+              << 100 * pile.deepest << "%, into a wall " << 100 * pile.into_wall << "%, fastest " << pile.fastest
+              << " mm/s" << std::endl;
     EXPECT_LE(pile.bottom_mean, 2.0 / 3.0 * compression) << d;
+    EXPECT_LE(pile.into_wall, compression) << d;
     EXPECT_LE(pile.deepest, 0.10) << d;
     EXPECT_LT(pile.fastest, 0.1) << d;  // at rest: under 0.1 mm/s
   }

@@ -141,29 +141,49 @@ TEST(ParticleHardCases, CornerCut) {
   EXPECT_EQ(scene.cuts[1].x_mm, scene.domain.width_mm);
   EXPECT_EQ(scene.cuts[1].y_mm, 0.0);
   const ParticleModel m = resolve_particles(scene).model;
-  // The clamp did its part: particles sat exactly on the bottom-left corner point, and on the
-  // right wall's line.
-  int most_in_corner = 0, most_on_right_wall = 0;
-  const auto count_clamped = [&](const Particles& p) {
+  // At rest a particle against a wall is held there by its neighbours' contacts: along the wall's
+  // normal the wall's spring, k_w·δ_w, balances their pushes, k·δ·cos θ, gravity, and what the
+  // grip leaves unbalanced (a sleeper wakes past 2·grip·(1 + γ·dt)). Its neighbours' centres are at
+  // least 60° apart around it and on its side of the wall, so their normal components add to at
+  // most √3 (at 60° and 120° from the wall; at 0° and 60° in a corner, 1.5):
+  // δ_w ≤ √3·(k/k_w)·δ_max + (g + 2·grip·(1 + γ·dt))/k_w, and √3·k/k_w = 1. The corner's pile is not
+  // at its design pressure (births inside the pool press it, and the grip keeps what they pressed),
+  // so the bound is the pairs' own deepest overlap in the same frame, not the design compression.
+  const double unbalanced_mm_s2 = std::hypot(m.gravity_x, m.gravity_y) + 2.0 * (m.yield + m.pinning) * m.drag_divisor;
+  const double design = scene.effects.get<ParticleParams>().compression * m.diameter_mm;
+  const double duration_s = scene.duration_s;
+  const std::uint32_t settled_age = std::uint32_t(m.birth_steps);
+  int most_in_corner = 0, most_on_right_wall = 0, frames_at_rest = 0;
+  double deepest_at_rest = 0.0, worst_excess = -1.0;
+  const auto count_pressed = [&](const Particles& p) {
     int in_corner = 0, on_right_wall = 0;
     for (int s = 0; s < p.slots(); ++s) {
       if (!is_alive(m, p.age[s])) continue;
-      in_corner += p.position[2 * s] == m.min_x && p.position[2 * s + 1] == m.max_y;
-      on_right_wall += p.position[2 * s] == m.max_x;
+      in_corner += p.position[2 * s] <= m.min_x && p.position[2 * s + 1] >= m.max_y;
+      on_right_wall += p.position[2 * s] >= m.max_x;
     }
     most_in_corner = std::max(most_in_corner, in_corner);
     most_on_right_wall = std::max(most_on_right_wall, on_right_wall);
+    if (p.t_s < duration_s - 0.5) return;
+    ++frames_at_rest;
+    const double into_wall = deepest_into_a_wall_mm(m, p);
+    const double bound = measure_crowding(m, p, settled_age).max_overlap_mm + unbalanced_mm_s2 / m.wall_stiffness;
+    deepest_at_rest = std::max(deepest_at_rest, into_wall);
+    worst_excess = std::max(worst_excess, into_wall - bound);
   };
-  // The corner's pile is the deepest mound the ring's particles make (a quarter-disc against two
-  // walls), which is what the contact is made stiff for: the flat floor's bound holds here too.
   Expect expect;
   RunSummary r;
-  run_and_check("corner-cut", std::move(scene), expect, &r, count_clamped);
+  run_and_check("corner-cut", std::move(scene), expect, &r, count_pressed);
   if (HasFatalFailure()) return;
-  std::cout << "  most particles exactly on the bottom-left corner point " << most_in_corner
-            << ", on the right wall's line " << most_on_right_wall << std::endl;
+  std::cout << "  most particles pressed into the bottom-left corner " << most_in_corner << ", against the right wall "
+            << most_on_right_wall << "; deepest into a wall over the last 0.5 s of " << duration_s << " s "
+            << 100.0 * deepest_at_rest / m.diameter_mm << "% of d (the design compression " << 100.0 * design / m.diameter_mm
+            << "%), past its frame's deepest pair by at most " << 100.0 * worst_excess / m.diameter_mm << "% of d"
+            << std::endl;
   EXPECT_GT(most_in_corner, 0);
   EXPECT_GT(most_on_right_wall, 0);
+  EXPECT_GT(frames_at_rest, 0);
+  EXPECT_LE(worst_excess, 0.0);
   EXPECT_EQ(r.final_counts.alive, 2000u);
 }
 

@@ -9,7 +9,8 @@ rounding:
 - for scenes with a [particles] table (docs/particles.md), the accounting (emitted, alive,
   expired, overwritten) replayed id by id from the emission schedule, the ring buffer and the
   lifetime; which ring slots hold the live particles and their ages; every live centre inside the
-  panel less a radius; rest (docs/particles.md#rest): every live particle within the rest distance
+  panel less half a radius (a wall is a contact, its backstop half a radius past its line); rest
+  (docs/particles.md#rest): every live particle within the rest distance
   of its anchor, at it when its count is 0, the count at most its age and the rest steps, and a
   sleeper (count at the rest steps) at exactly no speed;
 - the film of blood (splat/thickness, mm) recomputed from the stored positions and ages: each live

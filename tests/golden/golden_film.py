@@ -365,7 +365,9 @@ def check_particles(scenario, f, keys, problems, notes, quota=None, frame=None):
         if (slot_age[never] != NEVER_USED).any() or positions[i][never].any() or velocities[i][never].any():
             problems.append(f"key frame {k}: a slot that never held a particle is not age 2^32-1 at rest at (0, 0)")
         check_rest(settings, k, live, slot_age, rests[i], positions[i], anchors[i], velocities[i], problems)
-        # 3. Live centres inside the panel less a radius (on a mesh: on the surface, inside the panel).
+        # 3. Live centres inside the panel less a radius, but for what the walls give: a wall is a
+        # contact (docs/particles.md#walls) and a centre stops at half a radius past its line at the
+        # most (on a mesh: on the surface, inside the panel).
         p = positions[i][live].astype(np.float64)
         if frame is not None:
             check_on_surface(scene, frame, k, p, problems)
@@ -373,11 +375,12 @@ def check_particles(scenario, f, keys, problems, notes, quota=None, frame=None):
             film_pixels += int((film > 0.0).sum())
             check_film_on_surface(settings, scene, frame, k, p, slot_age[live], film, problems)
             continue
-        low, high = np.array([r, r]), np.array(panel) - r
+        margin = min(r, min(panel) / 2)   # a wall's line: where a centre touches it
+        low, high = np.full(2, margin / 2), np.array(panel) - margin / 2   # the backstop: half the margin past it
         outside = ~np.isfinite(p).all(axis=1) | ((p < low - bound_slack) | (p > high + bound_slack)).any(axis=1)
         if outside.any():
             s = np.flatnonzero(live)[np.flatnonzero(outside)[0]]
-            problems.append(f"key frame {k}: {outside.sum()} live particles lie outside the panel less a radius "
+            problems.append(f"key frame {k}: {outside.sum()} live particles lie outside the panel less half a radius "
                             f"(slot {s} at {tuple(positions[i][s])})")
         # 4. The film, recomputed: within float32's rounding where particles reach, exactly 0 elsewhere.
         live_position, live_age = positions[i][live], slot_age[live]

@@ -212,6 +212,15 @@ ParticleSettings resolve_particles(const ParticleParams& p, const Scene& scene) 
   m.max_x = float(scene.domain.width_mm - margin);
   m.min_y = float(margin);
   m.max_y = float(scene.domain.height_mm - margin);
+  // A wall bears a whole column of a pile where each of a bottom particle's two contacts bears 1/√3
+  // of it: √3 the pair's stiffness makes the floor give as a bottom contact does, at most ⅔ of the
+  // design compression on average under a pile of the design depth. A corner particle's two walls
+  // and three contacts, 2√3 + 3 < kDesignContacts pairs' stiffness, keep it inside the stability
+  // limit. Critically damped, 2√k_w, taken implicitly (so any damping is stable).
+  const double wall_stiffness = std::sqrt(3.0) * mech.stiffness_per_s2;
+  m.wall_stiffness = float(wall_stiffness);
+  m.wall_damping_divisor = float(1.0 + 2.0 * std::sqrt(wall_stiffness) * dt);
+  m.wall_give = float(margin / 2.0);
   const double cell_mm = mech.cell_mm / stretch;
   m.cell_mm = float(cell_mm);
   m.cells_x = cells_along(scene.domain.width_mm, cell_mm).to<int>();
