@@ -1,10 +1,11 @@
 #pragma once
-// A tissue mesh (core/mesh/tissue_mesh.h) from a Wavefront OBJ file: read with Debian's
-// tinyobjloader (polygons fanned into triangles), then checked for what the bleeding on it needs:
-// a uv at every corner, no triangle without area in space or in the texture, every edge shared by
-// at most two triangles (a surface, not a junction of sheets), finite coordinates, and no more
-// triangles than a budget allows. Anything else is an InputError naming the file, the face and the
-// problem.
+// A tissue mesh (core/mesh/tissue_mesh.h) from a Wavefront OBJ file (docs/mesh.md): its text checked
+// as written (every number a finite decimal within bounds, every index naming an element the file
+// has), read with Debian's tinyobjloader, its polygons cut into triangles by ear clipping, then
+// checked for what the bleeding on it needs: a uv at every corner, no triangle without area in space
+// or in the texture, every edge shared by at most two triangles (a surface, not a junction of
+// sheets), and no more triangles than a budget allows. Anything else is an InputError naming the
+// file, the line, the face where there is one, and the problem.
 #include <cstddef>
 #include <string>
 
@@ -19,8 +20,8 @@ struct MeshBudget {
   std::size_t file_bytes = std::size_t(512) << 20;
 };
 
-// Reads and checks `path` (see above); throws InputError naming the file and, where it can, the face
-// (1-based, in file order, after polygons are fanned into triangles) and the key `key`.
+// Reads and checks `path` (see above); throws InputError naming the file and, where it can, the line
+// and the face (1-based, in file order, after polygons are cut into triangles), under the key `key`.
 TissueMesh load_tissue_mesh(const std::string& path, const MeshBudget& budget = {},
                             const std::string& key = "tissue.mesh");
 // The same for the text of an OBJ file, `path` naming it in messages. A material library it names

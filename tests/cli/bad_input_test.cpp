@@ -118,7 +118,7 @@ TEST_F(BadInput, ABadTissueMeshNamesItsFileAndTheProblem) {
 }
 
 // Millions of triangles past the reader's budget (4,194,304, core/io/mesh_obj.h) are refused by
-// their count, before tinyobjloader holds them: one polygon of 4,194,307 corners fans into 4,194,305.
+// their count, before tinyobjloader holds them: one polygon of 4,194,307 corners would be cut into 4,194,305.
 TEST_F(BadInput, AMeshOfMillionsOfTrianglesPastTheBudget) {
   std::string huge = "v 0 0 0\nv 16 0 0\nv 16 -12 0\nvt 0 0\nvt 1 0\nvt 1 1\nf";
   huge.reserve(huge.size() + 4 * 4194307 + 1);
