@@ -14,12 +14,14 @@
 #include "core/effects/effect_list.h"
 #include "core/effects/pipeline.h"
 #include "core/effects/stage_kinds.h"
+#include "core/effects/surface/surface_stage.h"
 #include "core/effects/tips.h"
 #include "core/haptics/haptic_params.h"
 #include "core/io/mesh_obj.h"
 #include "core/io/text_file.h"
 #include "core/io/tissue_png.h"
 #include "core/io/trace_csv.h"
+#include "core/mesh/surface_bake.h"
 #include "core/runtime/memory.h"
 #include "core/runtime/message_text.h"
 #include "core/runtime/tissue.h"
@@ -350,6 +352,26 @@ std::string beside(const Scenario& s, const std::string& name) {
   return file.lexically_normal().string();
 }
 
+// What a run bakes of the mesh onto the panel (core/mesh/surface_bake.h), refused as the file is read
+// so that validate refuses it too: uvs that hold no texel's centre, and a texture stretched over
+// the mesh past kMaxLeastStretch.
+void refuse_a_mesh_the_panel_cannot_hold(const Scenario& s) {
+  const TissueMesh& mesh = s.scene.mesh->mesh();
+  const TexturePanel panel = texture_panel(s.scene.domain);
+  const auto refuse = [&](const std::string& why) {
+    throw InputError(s.place_of("tissue.mesh"), "tissue.mesh", s.scene.mesh_source + " " + why);
+  };
+  if (!covers_a_texel(mesh, panel))
+    refuse("covers no texel of the " + std::to_string(panel.width_px) + " × " + std::to_string(panel.height_px) +
+           " texture: its uvs hold no texel's centre");
+  const double least = panel_stretch(mesh, panel).least;
+  if (least > kMaxLeastStretch)
+    refuse("stretches the texture: a panel mm is at least " + format_significant(least, 3) +
+           " mm of its surface, past the " + format_number(kMaxLeastStretch) +
+           " a mesh may stretch it (its uvs span too little of the texture for its size on the " +
+           format_number(panel.width_mm) + " x " + format_number(panel.height_mm) + " mm panel)");
+}
+
 // The [tissue] table, and its mesh, which the output's fields and the stages' memory depend on (the
 // mesh reader keeps to its own budget).
 TissueFile read_tissue_table(Reader& r, const toml::table& root, Scenario& s) {
@@ -364,6 +386,7 @@ TissueFile read_tissue_table(Reader& r, const toml::table& root, Scenario& s) {
                        "cannot read " + s.scene.mesh_source + ": " +
                            (fs::exists(s.scene.mesh_source, error) ? "not a regular file" : "no such file"));
     s.scene.mesh = std::make_shared<const MeshSurface>(placed(load_tissue_mesh(s.scene.mesh_source), tissue.placement));
+    refuse_a_mesh_the_panel_cannot_hold(s);
   }
   return tissue;
 }

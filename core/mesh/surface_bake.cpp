@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <deque>
+#include <optional>
 #include <stdexcept>
 
 #include <Eigen/Dense>
@@ -53,6 +54,29 @@ bool holds(const Eigen::Vector2d& p0, const Eigen::Vector2d& p1, const Eigen::Ve
   return (s0 >= 0 && s1 >= 0 && s2 >= 0) || (s0 <= 0 && s1 <= 0 && s2 <= 0);
 }
 
+// Gives `visit` each texel whose centre the triangle's uvs hold, in row order, until it returns
+// false; whether it went through them all. The texels looked at are those of its uv box, (i + ½)/W
+// in [least u, greatest u], clamped to the texture before they are counted in ints: a uv far off
+// the texture stays a double.
+template <class Visit>
+bool for_each_texel_held(const TissueMesh& mesh, const TissueMesh::Triangle& t, const TexturePanel& panel,
+                         Visit&& visit) {
+  const Eigen::Vector2d& p0 = mesh.uvs[t.uv[0]];
+  const Eigen::Vector2d& p1 = mesh.uvs[t.uv[1]];
+  const Eigen::Vector2d& p2 = mesh.uvs[t.uv[2]];
+  const double w = panel.width_px, h = panel.height_px;
+  const auto first = [](double low, double n) { return int(std::clamp(std::ceil(low * n - 0.5), 0.0, n)); };
+  const auto last = [](double high, double n) { return int(std::clamp(std::floor(high * n - 0.5), -1.0, n - 1)); };
+  const int i0 = first(std::min({p0.x(), p1.x(), p2.x()}), w), i1 = last(std::max({p0.x(), p1.x(), p2.x()}), w);
+  const int j0 = first(std::min({p0.y(), p1.y(), p2.y()}), h), j1 = last(std::max({p0.y(), p1.y(), p2.y()}), h);
+  for (int j = j0; j <= j1; ++j)
+    for (int i = i0; i <= i1; ++i)
+      if (holds(p0, p1, p2, (i + 0.5) / w, (j + 0.5) / h) &&
+          !visit(std::size_t(j) * std::size_t(panel.width_px) + std::size_t(i)))
+        return false;
+  return true;
+}
+
 // Off-surface texels take their nearest covered texel's values: a breadth-first sweep from every
 // covered texel at once, in row order, so the first to reach a texel gives it its values.
 void fill_off_surface(SurfaceMaps& maps) {
@@ -93,38 +117,34 @@ SurfaceMaps bake_surface_maps(const TissueMesh& mesh, const TexturePanel& panel,
   maps.frame.assign(texels * kSurfaceFrameChannels, 0.0f);
   maps.gravity.assign(texels * kSurfaceGravityChannels, 0.0f);
   std::vector<bool> taken(texels, false);
-  const double w = panel.width_px, h = panel.height_px;
   for (const TissueMesh::Triangle& t : mesh.triangles) {
-    const Eigen::Vector2d& p0 = mesh.uvs[t.uv[0]];
-    const Eigen::Vector2d& p1 = mesh.uvs[t.uv[1]];
-    const Eigen::Vector2d& p2 = mesh.uvs[t.uv[2]];
-    // The texels whose centres may lie in its uv box: (i + ½)/W ∈ [min u, max u].
-    const auto first = [](double low, double n) { return std::max(0, int(std::ceil(low * n - 0.5))); };
-    const auto last = [](double high, double n) { return std::min(int(n) - 1, int(std::floor(high * n - 0.5))); };
-    const int i0 = first(std::min({p0.x(), p1.x(), p2.x()}), w), i1 = last(std::max({p0.x(), p1.x(), p2.x()}), w);
-    const int j0 = first(std::min({p0.y(), p1.y(), p2.y()}), h), j1 = last(std::max({p0.y(), p1.y(), p2.y()}), h);
-    if (i1 < i0 || j1 < j0) continue;
-    const TexelValues values = frame_values(panel_to_surface(mesh, t, panel), gravity);
-    for (int j = j0; j <= j1; ++j)
-      for (int i = i0; i <= i1; ++i) {
-        const std::size_t texel = std::size_t(j) * std::size_t(panel.width_px) + std::size_t(i);
-        if (taken[texel] || !holds(p0, p1, p2, (i + 0.5) / w, (j + 0.5) / h)) continue;
-        taken[texel] = true;
-        float* f = &maps.frame[kSurfaceFrameChannels * texel];
-        f[0] = float(values.a);
-        f[1] = float(values.b);
-        f[2] = float(values.c);
-        f[3] = 1.0f;
-        maps.gravity[kSurfaceGravityChannels * texel] = float(values.gx);
-        maps.gravity[kSurfaceGravityChannels * texel + 1] = float(values.gy);
-        ++maps.covered;
-      }
+    std::optional<TexelValues> values;
+    for_each_texel_held(mesh, t, panel, [&](std::size_t texel) {
+      if (taken[texel]) return true;
+      if (!values) values = frame_values(panel_to_surface(mesh, t, panel), gravity);
+      taken[texel] = true;
+      float* f = &maps.frame[kSurfaceFrameChannels * texel];
+      f[0] = float(values->a);
+      f[1] = float(values->b);
+      f[2] = float(values->c);
+      f[3] = 1.0f;
+      maps.gravity[kSurfaceGravityChannels * texel] = float(values->gx);
+      maps.gravity[kSurfaceGravityChannels * texel + 1] = float(values->gy);
+      ++maps.covered;
+      return true;
+    });
   }
   if (maps.covered == 0)
     throw std::invalid_argument("the mesh covers no texel of the " + std::to_string(panel.width_px) + " × " +
                                 std::to_string(panel.height_px) + " texture: its uvs hold no texel's centre");
   fill_off_surface(maps);
   return maps;
+}
+
+bool covers_a_texel(const TissueMesh& mesh, const TexturePanel& panel) {
+  for (const TissueMesh::Triangle& t : mesh.triangles)
+    if (!for_each_texel_held(mesh, t, panel, [](std::size_t) { return false; })) return true;
+  return false;
 }
 
 PanelStretch panel_stretch(const TissueMesh& mesh, const TexturePanel& panel) {

@@ -45,4 +45,13 @@ struct PanelStretch {
 };
 PanelStretch panel_stretch(const TissueMesh& mesh, const TexturePanel& panel);
 
+// Whether some triangle's uvs hold a texel's centre: a mesh that covers none has no surface to bake.
+bool covers_a_texel(const TissueMesh& mesh, const TexturePanel& panel);
+
+// The most a mesh's least stretch may be: a panel mm at least this many mm of the surface everywhere
+// is a texture whose uvs span too little of it for the mesh's size. The particles' collision grid
+// and the spread's tiles are sized in panel mm by the least stretch, and past this their counts
+// outgrow what they are counted in; a scene refuses such a mesh at tissue.mesh (docs/mesh.md).
+constexpr double kMaxLeastStretch = 1e3;
+
 }  // namespace bleedsim

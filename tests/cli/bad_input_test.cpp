@@ -128,6 +128,47 @@ TEST_F(BadInput, AMeshOfMillionsOfTrianglesPastTheBudget) {
                  {"huge.obj", "tissue.mesh", "the mesh has 4194305 triangles, more than the 4194304 a mesh may have"});
 }
 
+// Issue 38, item 11: validate passed a mesh whose uvs (0 to 0.01) hold no texel's centre, and run
+// then failed (exit 1) with "the mesh covers no texel" and no key; a mesh whose texture a panel mm
+// stretches over a kilometre of (its uvs spanning 1e-9, or its coordinates 1e12) made validate
+// fail with a narrowing "its limit check should have stopped". Both commands now refuse what a run
+// cannot use, at tissue.mesh, naming the mesh file.
+TEST_F(BadInput, AMeshARunCannotUseIsRefusedByValidateAsByRun) {
+  const auto mesh_with = [](const std::string& size, const std::string& uv) {
+    return "v 0 0 0\nv " + size + " 0 0\nv " + size + " -" + size + " 0\nv 0 -" + size + " 0\nvt 0 0\nvt " + uv +
+           " 0\nvt " + uv + " " + uv + "\nvt 0 " + uv + "\nf 1/1 2/2 3/3\nf 1/1 3/3 4/4\n";
+  };
+  const fs::path file = dir_ / "bad.toml";
+  const auto expect_both_refuse = [&](const std::string& mesh, const std::string& scene_tail,
+                                      const std::vector<std::string>& expected) {
+    SCOPED_TRACE(mesh);
+    write_text(file, scenario_with("", "[tissue]\nmesh = \"" + mesh + "\"\nmesh_scale = " + scene_tail));
+    const CliResult validate = run_cli("validate '" + file.string() + "'");
+    EXPECT_EQ(validate.exit_code, 2) << validate.output;
+    for (const std::string& part : expected)
+      EXPECT_NE(validate.output.find(part), std::string::npos) << "missing '" << part << "' in: " << validate.output;
+    expect_refused(read_bytes(file), expected);
+  };
+  // The 64 x 48 texels' first centres are at u = 0.5/64 and v = 0.5/48 = 0.0104: a uv square of 0.01
+  // holds none, and of 1e-9 neither.
+  write_text(dir_ / "small-uv.obj", mesh_with("12", "0.01"));
+  expect_both_refuse("small-uv.obj", "1\n",
+                     {"bad.toml:12:8: tissue.mesh: ", "small-uv.obj covers no texel of the 64 × 48 texture"});
+  write_text(dir_ / "tiny-uv.obj", mesh_with("12", "1e-9"));
+  expect_both_refuse("tiny-uv.obj", "1\n[particles]\n",
+                     {"bad.toml:12:8: tissue.mesh: ", "tiny-uv.obj covers no texel of the 64 × 48 texture"});
+  // A 1e6 mm square (the most a mesh's numbers may be) scaled 1000 times over the 16 x 12 mm panel:
+  // a panel mm is at least 6.25e7 mm of its surface (1e9 mm over 16), past the 1000 a mesh may stretch.
+  write_text(dir_ / "huge.obj", mesh_with("1e6", "1"));
+  expect_both_refuse("huge.obj", "1000\n[particles]\n",
+                     {"bad.toml:12:8: tissue.mesh: ",
+                      "huge.obj stretches the texture: a panel mm is at least 6.25e+07 mm of its surface, past the 1000"});
+  // Coordinates of 1e12 are refused as the mesh file is read.
+  write_text(dir_ / "far.obj", mesh_with("1e12", "1"));
+  expect_both_refuse("far.obj", "1\n[particles]\n",
+                     {"far.obj:2: tissue.mesh: vertex 2's x is '1e12', beyond ±1e6"});
+}
+
 TEST_F(BadInput, AMeshsPlacementWithoutAMeshOrThePanelsPlacementWithOne) {
   expect_refused(scenario_with("", "[tissue]\nmesh_scale = 2\n"),
                  {"bad.toml:12:", "tissue.mesh_scale: places a tissue mesh, and this scene names none"});
