@@ -5,6 +5,7 @@
 // the plots (scripts/plot-study) in the output folder (docs/accuracy.md).
 #include <unistd.h>
 
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -30,7 +31,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// "substeps=10,20,40" as a knob and its levels.
+// "substeps=10,20,40" as a knob and its levels, each the whole of its place between the commas, a
+// decimal number as std::from_chars reads it (strtod would take "0x10" and " 10"). What the levels
+// must be beside (in range, each once) the study checks.
 KnobLevels parse_knob(const std::string& text) {
   const std::size_t equals = text.find('=');
   const std::string name = text.substr(0, equals);
@@ -38,15 +41,18 @@ KnobLevels parse_knob(const std::string& text) {
   if (!knob) throw InputError({}, "--knob", unknown_knob_message(name));
   if (equals == std::string::npos || equals + 1 == text.size())
     throw InputError({}, "--knob", "write it as " + name + "=v1,v2,... (got '" + text + "')");
+  const std::string list = text.substr(equals + 1), key = "--knob " + name;
   KnobLevels levels{knob, {}};
-  std::size_t at = equals + 1;
-  while (at <= text.size()) {
-    const std::size_t comma = std::min(text.find(',', at), text.size());
-    const std::string value = text.substr(at, comma - at);
-    char* end = nullptr;
-    const double v = std::strtod(value.c_str(), &end);
-    if (value.empty() || *end != '\0')
-      throw InputError({}, std::string("--knob ") + name, "expected numbers separated by commas, got '" + value + "'");
+  for (std::size_t at = 0; at <= list.size();) {
+    const std::size_t comma = std::min(list.find(',', at), list.size());
+    const std::string level = "level " + std::to_string(levels.levels.size() + 1);
+    const std::string value = list.substr(at, comma - at);
+    if (value.empty()) throw InputError({}, key, level + " of '" + list + "' is empty: write numbers between the commas");
+    double v = 0;
+    const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), v);
+    if (error == std::errc::invalid_argument || end != value.data() + value.size())
+      throw InputError({}, key, level + ", '" + value + "', is not a decimal number");
+    if (error == std::errc::result_out_of_range) throw InputError({}, key, level + ", '" + value + "', is out of a double's range");
     levels.levels.push_back(v);
     at = comma + 1;
   }

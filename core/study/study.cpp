@@ -24,10 +24,13 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 // A knob's values keep its parameter's range (the table's, core/runtime/params.h); a factor's need
-// only be positive.
+// only be positive. Each is given once: a repeat is a slip in the list, not a level.
 void check_values(const Knob& knob, const std::vector<double>& values) {
   const std::string key = std::string("--knob ") + knob.name;
   if (values.empty()) throw InputError({}, key, "needs at least one value");
+  for (auto v = values.begin(); v != values.end(); ++v)
+    if (std::find(values.begin(), v, *v) != v)
+      throw InputError({}, key, format_number(*v) + " is given twice: give each level once");
   for (const double v : values) {
     if (!knob.param) {
       if (!(v > 0) || !std::isfinite(v)) throw InputError({}, key, "values must be positive (got " + format_number(v) + ")");
@@ -39,11 +42,10 @@ void check_values(const Knob& knob, const std::vector<double>& values) {
   }
 }
 
-// Coarse to fine (the step size falling), without repeats.
+// Coarse to fine (the step size falling); check_values has made sure there are no repeats.
 std::vector<double> coarse_to_fine(const Knob& knob, std::vector<double> values) {
   std::sort(values.begin(), values.end(),
             [&](double a, double b) { return knob_step(knob, a) > knob_step(knob, b); });
-  values.erase(std::unique(values.begin(), values.end()), values.end());
   return values;
 }
 

@@ -117,25 +117,51 @@ TEST(StudyCommand, TwoRunsGiveTheSameDataTimingsAside) {
   EXPECT_NE(data("a").find("GROUP \"/ladders\""), std::string::npos);
 }
 
-TEST(StudyCommand, BadOptionsExitTwoAndWriteNothing) {
+// A study's options and the message that refuses them.
+struct Refused {
+  const char* options;
+  const char* message;
+};
+
+// Each case on the tiny scene exits 2 with its message and writes nothing.
+void expect_each_refused(const std::vector<Refused>& cases) {
   const fs::path folder = scratch_folder();
   const fs::path scene = tiny_scene(folder);
-  const struct {
-    const char* options;
-    const char* message;
-  } cases[] = {{"--knob substep=1,2", "--knob: no knob 'substep' (known: compression, substeps, particle_size,"},
-               {"--knob iterations=1,2", "--knob: no knob 'iterations': the particle model has no solver iterations"},
-               {"--knob substeps", "--knob: write it as substeps=v1,v2,... (got 'substeps')"},
-               {"--knob substeps=20,x", "--knob substeps: expected numbers separated by commas, got 'x'"},
-               {"--knob blur_downsample=3", "--knob blur_downsample: values of blur.downsample must be 1, 2 or 4 (got 3)"},
-               {"--knob resolution=1 --seeds 1", "--seeds: needs at least 2 (got 1): a confidence interval needs two runs"},
-               {"--knob compression=0.0002,0.02", "reference: the finest settings (compression 0.0002) cannot run"}};
-  for (const auto& c : cases) {
+  for (const Refused& c : cases) {
     const CliResult result = run_cli(study_command(scene, folder / "out", c.options));
     EXPECT_EQ(result.exit_code, 2) << c.options << ": " << result.output;
-    EXPECT_NE(result.output.find(c.message), std::string::npos) << result.output;
+    EXPECT_NE(result.output.find(c.message), std::string::npos) << c.options << ": " << result.output;
     EXPECT_FALSE(fs::exists(folder / "out")) << c.options;
   }
+}
+
+TEST(StudyCommand, BadOptionsExitTwoAndWriteNothing) {
+  expect_each_refused(
+      {{"--knob substep=1,2", "--knob: no knob 'substep' (known: compression, substeps, particle_size,"},
+       {"--knob iterations=1,2", "--knob: no knob 'iterations': the particle model has no solver iterations"},
+       {"--knob substeps", "--knob: write it as substeps=v1,v2,... (got 'substeps')"},
+       {"--knob substeps=20,x", "--knob substeps: level 2, 'x', is not a decimal number"},
+       {"--knob blur_downsample=3", "--knob blur_downsample: values of blur.downsample must be 1, 2 or 4 (got 3)"},
+       {"--knob resolution=1 --seeds 1", "--seeds: needs at least 2 (got 1): a confidence interval needs two runs"},
+       {"--knob compression=0.0002,0.02", "reference: the finest settings (compression 0.0002) cannot run"}});
+}
+
+// Issue 38, item 12: `--knob substeps=70,70` was taken (the repeat dropped without a word), and a
+// list's values were read by strtod, which takes "0x10" as 16 and " 10" as 10 and calls 1e400 inf.
+// Each level is a decimal number as std::from_chars reads it, written once; an empty one is named.
+TEST(StudyCommand, AKnobsLevelsAreEachADecimalNumberGivenOnce) {
+  expect_each_refused(
+      {{"--knob substeps=70,70", "--knob substeps: 70 is given twice: give each level once"},
+       {"--knob compression=0.02,0.04,0.020", "--knob compression: 0.02 is given twice: give each level once"},
+       {"--knob substeps=10,,20", "--knob substeps: level 2 of '10,,20' is empty: write numbers between the commas"},
+       {"--knob substeps=10,", "--knob substeps: level 2 of '10,' is empty: write numbers between the commas"},
+       {"--knob substeps=,10", "--knob substeps: level 1 of ',10' is empty: write numbers between the commas"},
+       {"--knob substeps=0x10", "--knob substeps: level 1, '0x10', is not a decimal number"},
+       {"--knob 'substeps= 10'", "--knob substeps: level 1, ' 10', is not a decimal number"},
+       {"--knob substeps=1e400", "--knob substeps: level 1, '1e400', is out of a double's range"},
+       {"--knob substeps=", "--knob: write it as substeps=v1,v2,... (got 'substeps=')"},
+       {"--knob substeps=nan", "--knob substeps: values of particles.substeps must be a finite number (got nan)"},
+       {"--knob =1,2", "--knob: no knob '' (known: compression, substeps,"}});
 }
 
 }  // namespace

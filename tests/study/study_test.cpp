@@ -163,6 +163,13 @@ TEST(StudyBadInput, IsRefusedBeforeAnythingRuns) {
             std::string::npos);
 }
 
+// Issue 38, item 12: a level given twice was dropped without a word, through the CLI or a spec.
+TEST(StudyBadInput, ALevelGivenTwiceIsRefused) {
+  EXPECT_NE(refusal(small_scene(), spec_of({{find_knob("particle_size"), {2, 1, 2}}}))
+                .find("--knob particle_size: 2 is given twice: give each level once"),
+            std::string::npos);
+}
+
 // Every job's record, run in the given order of job indices.
 std::vector<std::vector<std::uint8_t>> records_in(const Study& study, std::vector<std::size_t> order) {
   std::vector<std::vector<std::uint8_t>> records(study.job_count());
