@@ -71,25 +71,20 @@ class Reader {
     return node->as_table();
   }
 
-  // Refuses every key of `t` not in `known`, suggesting the nearest known one.
-  void only_known(const toml::table& t, const std::string& prefix, const std::vector<std::string>& known) {
-    for (const auto& [key, node] : t) {
-      const std::string name(key.str());
-      if (std::find(known.begin(), known.end(), name) != known.end()) continue;
-      std::string message = node.is_table() ? "unknown table" : "unknown key";
-      const std::string* nearest = nullptr;
-      std::size_t best = 3;
-      for (const std::string& k : known)
-        if (const std::size_t d = edit_distance(name, k); d < best) best = d, nearest = &k;
-      if (nearest) {
-        message += "; did you mean '" + *nearest + "'?";
-      } else {
-        message += " (known here:";
-        for (const std::string& k : known) message += " " + k;
-        message += ")";
-      }
-      fail(key.source(), prefix.empty() ? name : prefix + "." + name, message);
-    }
+  // Refuses every key of the file that no table reads, all of them at once in file order (an old
+  // file meets its every former key in one try). The first is the error's place and key; the rest
+  // follow it a line each.
+  void refuse_unknown_keys(const toml::table& root) const {
+    std::vector<Unknown> unknown = unknown_keys(root);
+    if (unknown.empty()) return;
+    std::sort(unknown.begin(), unknown.end(), [](const Unknown& a, const Unknown& b) {
+      return std::make_pair(a.where.line, a.where.column) < std::make_pair(b.where.line, b.where.column);
+    });
+    std::string message = unknown.front().message;
+    if (unknown.size() > 1) message += " (and " + std::to_string(unknown.size() - 1) + " more below)";
+    for (auto u = unknown.begin() + 1; u != unknown.end(); ++u)
+      message += "\n  " + std::string(InputError(u->where, u->key, u->message).what());
+    throw InputError(unknown.front().where, unknown.front().key, message);
   }
 
   // Reads `table`'s keys from `t` (null: the file left the whole table out) into `params`, under
@@ -107,9 +102,6 @@ class Reader {
   Written read_keys(const toml::table* t, const ParamTable<P>& table, P& params, const Scene& scene,
                     const std::string& at) {
     Written written{s_.path, {}, {}, {}};
-    std::vector<std::string> known;
-    for (const Param<P>& param : table.params) known.push_back(param.key);
-    if (t) only_known(*t, at, known);
     for (const Param<P>& param : table.params) {
       const std::string key = at + "." + param.key;
       const toml::node* node = t ? t->get(param.key) : nullptr;
@@ -222,6 +214,67 @@ class Reader {
       values.push_back(*name);
     }
     return values;
+  }
+
+  // A key no table reads: where it was written, its path ("cut[2].rate_per_s") and what is wrong.
+  struct Unknown {
+    SourcePlace where;
+    std::string key;
+    std::string message;
+  };
+
+  // The file's unknown tables, and the unknown keys of its known tables and of each [[cut]] and
+  // [[tip]]; an unknown table's own keys are not looked at.
+  std::vector<Unknown> unknown_keys(const toml::table& root) const {
+    const std::vector<TableView> tables = scenario_tables();
+    std::vector<std::string> names;
+    for (const TableView& table : tables) names.push_back(table.name);
+    std::vector<Unknown> unknown;
+    for (const auto& [key, node] : root) {
+      const std::string name(key.str());
+      const auto table = std::find_if(tables.begin(), tables.end(), [&](const TableView& t) { return t.name == name; });
+      if (table == tables.end()) {
+        unknown.push_back({place(key.source()), name, unknown_message(name, "", "", names, "unknown table")});
+        continue;
+      }
+      std::vector<std::string> known;
+      for (const ParamView& param : table->params) known.push_back(param.key);
+      if (const toml::table* t = node.as_table()) add_unknown_keys(*t, name, name, known, unknown);
+      if (node.is_array_of_tables())
+        for (std::size_t i = 0; i < node.as_array()->size(); ++i)
+          add_unknown_keys(*(*node.as_array())[i].as_table(), name, name + "[" + std::to_string(i) + "]", known,
+                           unknown);
+    }
+    return unknown;
+  }
+
+  // The keys of `t`, [`table`] written at `at`, that are not in `known`.
+  void add_unknown_keys(const toml::table& t, const std::string& table, const std::string& at,
+                        const std::vector<std::string>& known, std::vector<Unknown>& unknown) const {
+    for (const auto& [key, node] : t) {
+      const std::string name(key.str());
+      if (std::find(known.begin(), known.end(), name) == known.end())
+        unknown.push_back({place(key.source()), at + "." + name,
+                           unknown_message(name, table, at, known, node.is_table() ? "unknown table" : "unknown key")});
+    }
+  }
+
+  // `what` ("unknown key") said of `name` in [`table`], written at `at` ("cut[2]"; both "" for the
+  // file's top level): what became of it when it is a former key, else the nearest known name, or
+  // all of them.
+  static std::string unknown_message(const std::string& name, const std::string& table, const std::string& at,
+                                     const std::vector<std::string>& known, std::string what) {
+    if (const FormerKey* former = find_former_key(table, name))
+      return what + (*former->replacement ? ": replaced by " + at + "." + former->replacement : ": removed") + " (" +
+             former->since + "): " + former->what;
+    const std::string* nearest = nullptr;
+    std::size_t best = 3;
+    for (const std::string& k : known)
+      if (const std::size_t d = edit_distance(name, k); d < best) best = d, nearest = &k;
+    if (nearest) return what + "; did you mean '" + *nearest + "'?";
+    what += " (known here:";
+    for (const std::string& k : known) what += " " + k;
+    return what + ")";
   }
 
   Scenario& s_;
@@ -466,9 +519,7 @@ Scenario parse_scenario(const std::string& text, const std::string& path, ReadTi
   s.path = path;
   s.text = text;
   Reader r(s);
-  std::vector<std::string> tables;
-  for (const TableView& table : scenario_tables()) tables.push_back(table.name);
-  r.only_known(root, "", tables);
+  r.refuse_unknown_keys(root);
   const toml::table* scene = r.table(root, "scene");
   if (!scene) throw InputError(SourcePlace{path, 0, 0}, "scene", "missing the [scene] table (required)");
   r.read(scene, scene_table(), s.scene, s.scene, "scene");

@@ -130,6 +130,41 @@ const ParamView& scenario_param(const std::string& key) {
   throw std::out_of_range("no scenario parameter '" + key + "'");
 }
 
+const std::vector<FormerKey>& former_keys() {
+  // In table, then key order. Issue 12's model replaced particles counted per second by blood per mm
+  // of wound, and a contact set by hand by one derived from the pile it must bear.
+  static const std::vector<FormerKey> table = {
+      {"cut", "rate_per_s", "flow_mm3_per_s_per_mm",
+       "blood per second per mm of the cut's wound_mm, its particles that blood over particle_volume_mm3: "
+       "rate_per_s × particle_volume_mm3 for a wound of 1 mm",
+       "2026-11-25, issue 12", "25ce75c"},
+      {"particles", "damping_per_s", "damping_ratio",
+       "the contact's dashpot as a fraction of a pair's critical damping, not per second", "2026-11-25, issue 12",
+       "25ce75c"},
+      {"particles", "max_per_cell", "",
+       "there is no cap per cell: every pair within range is summed, from both sides", "2026-11-25, issue 12",
+       "25ce75c"},
+      {"particles", "rate_per_s", "flow_mm3_per_s_per_mm",
+       "the cuts' default blood per second per mm of wound, the particles that blood over particle_volume_mm3: "
+       "rate_per_s × particle_volume_mm3 for a wound of 1 mm",
+       "2026-11-25, issue 12", "25ce75c"},
+      {"particles", "stiffness_per_s2", "compression",
+       "the deepest pile's overlap as a fraction of the diameter; the contact's stiffness follows from it and "
+       "design_depth_mm (docs/particles.md)",
+       "2026-11-25, issue 12", "25ce75c"},
+      {"particles", "volume_mm3_per_s", "flow_mm3_per_s_per_mm",
+       "the cuts' default blood per second per mm of wound: volume_mm3_per_s for a wound of 1 mm", "2026-11-25, issue 12",
+       "25ce75c"},
+  };
+  return table;
+}
+
+const FormerKey* find_former_key(const std::string& table, const std::string& key) {
+  for (const FormerKey& former : former_keys())
+    if (table == former.table && key == former.key) return &former;
+  return nullptr;
+}
+
 const ParamTable<OutputSpec>& output_table() {
   using T = ParamType;
   using P = OutputSpec;

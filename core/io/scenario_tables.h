@@ -29,4 +29,18 @@ std::vector<TableView> scenario_tables();
 // The parameter "table.key" ("particles.substeps") of those tables; std::out_of_range when none is.
 const ParamView& scenario_param(const std::string& key);
 
+// A key scenario files once held, and what became of it: an old file's key is refused saying so
+// (docs/scenario-format.md, "Former keys", is written from this table).
+struct FormerKey {
+  const char* table;        // "particles", or "cut" for each [[cut]]
+  const char* key;          // "rate_per_s"
+  const char* replacement;  // the key of the same table that took its place; empty when none did
+  const char* what;         // what the replacement means and how the old value maps to it, or why it went
+  const char* since;        // "2026-11-25, issue 12"
+  const char* commit;       // the commit that made the change
+};
+const std::vector<FormerKey>& former_keys();
+// The former key `key` of `table`, or null when it was never one.
+const FormerKey* find_former_key(const std::string& table, const std::string& key);
+
 }  // namespace bleedsim

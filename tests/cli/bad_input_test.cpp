@@ -73,6 +73,47 @@ TEST_F(BadInput, UnknownKey) {
                  {"bad.toml:3:", "scene.hieght_px", "unknown", "height_px"});
 }
 
+// Issue 38, item 16: a scenario written before keys were renamed failed at one old key a try, in
+// alphabetical order, never naming what replaced it. Every unknown key is named in one message, in
+// file order, each at its line and column with its key path; a former key says what became of it.
+TEST_F(BadInput, EveryUnknownKeyIsNamedAtOnceInFileOrderAndAFormerKeySaysWhatBecameOfIt) {
+  std::string text = scenario_with("y_mm = 6.0\n", "y_mm = 6.0\n"   // 10
+                                                   "rate_per_s = 300\n"        // 11
+                                                   "[particles]\n"             // 12
+                                                   "rate_per_s = 500\n"        // 13
+                                                   "damping_per_s = 100\n"     // 14
+                                                   "max_per_cell = 8\n"        // 15
+                                                   "stiffness_per_s2 = 4e5\n"  // 16
+                                                   "volume_mm3_per_s = 2\n"    // 17
+                                                   "[lightning]\n"             // 18
+                                                   "bolts = 3\n");             // 19
+  text.replace(text.find("height_px = 48"), 14, "hieght_px = 48");  // 3
+  // Each after the first on a line of its own, at its place.
+  const std::string file = (dir_ / "bad.toml").string(), line = "\n  " + file;
+  const std::vector<std::string> expected = {
+      file + ":3:1: scene.hieght_px: unknown key; did you mean 'height_px'? (and 7 more below)",
+      line + ":11:1: cut[0].rate_per_s: unknown key: replaced by cut[0].flow_mm3_per_s_per_mm (2026-11-25, issue 12): ",
+      line + ":13:1: particles.rate_per_s: unknown key: replaced by particles.flow_mm3_per_s_per_mm (2026-11-25, "
+             "issue 12): ",
+      line + ":14:1: particles.damping_per_s: unknown key: replaced by particles.damping_ratio (2026-11-25, issue 12): ",
+      line + ":15:1: particles.max_per_cell: unknown key: removed (2026-11-25, issue 12): ",
+      line + ":16:1: particles.stiffness_per_s2: unknown key: replaced by particles.compression (2026-11-25, issue 12): ",
+      line + ":17:1: particles.volume_mm3_per_s: unknown key: replaced by particles.flow_mm3_per_s_per_mm (2026-11-25, "
+             "issue 12): ",
+      line + ":18:2: lightning: unknown table"};
+  expect_refused(text, expected);
+  // In file order: each after the one before it.
+  const CliResult result = run_cli("validate '" + file + "'");
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  std::size_t at = 0;
+  for (const std::string& part : expected) {
+    const std::size_t found = result.output.find(part, at);
+    EXPECT_NE(found, std::string::npos) << "'" << part << "' not after the one before it in: " << result.output;
+    if (found != std::string::npos) at = found + part.size();
+  }
+  EXPECT_EQ(result.output.find("bolts"), std::string::npos) << "an unknown table's keys are its own business";
+}
+
 TEST_F(BadInput, WrongType) {
   expect_refused(scenario_with("width_px = 64", "width_px = \"wide\""), {"bad.toml:2:", "scene.width_px", "integer"});
 }
