@@ -12,8 +12,8 @@
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string bytes(reinterpret_cast<const char*>(data), size);
   try {
-    const bleedsim::Image image = bleedsim::decode_tissue_png(bytes, "fuzzed.png", 17, 13, {"fuzzed.toml", 1, 1},
-                                                              "tissue.texture", std::size_t{64} << 20);
+    const bleedsim::Image image = bleedsim::decode_tissue_png(
+        bytes, {"fuzzed.png", "texture", "tissue.texture", {"fuzzed.toml", 1, 1}}, 17, 13, std::size_t{64} << 20);
     if (image.width != 17 || image.height != 13 || image.rgba.size() != 17u * 13u * 4u) std::abort();
   } catch (const bleedsim::InputError&) {
   }

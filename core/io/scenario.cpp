@@ -22,6 +22,7 @@
 #include "core/io/tissue_png.h"
 #include "core/io/trace_csv.h"
 #include "core/mesh/surface_bake.h"
+#include "core/runtime/input_file.h"
 #include "core/runtime/memory.h"
 #include "core/runtime/message_text.h"
 #include "core/runtime/tissue.h"
@@ -335,18 +336,25 @@ void read_each(Reader& r, const toml::table& root, const ParamTable<P>& table, s
   }
 }
 
-// The trace the [haptics] table names, relative to the scenario file.
-void load_named_trace(const Written& written, Scenario& s) {
-  fs::path file = written.texts.at("trace");
+// A file named in the scenario, relative to the scenario file.
+std::string beside(const Scenario& s, const std::string& name) {
+  fs::path file = name;
   if (file.is_relative()) file = fs::path(s.path).parent_path() / file;
-  std::error_code ec;
-  if (!fs::is_regular_file(file, ec))
-    throw InputError(s.place_of("haptics.trace"), "haptics.trace",
-                     "no trace file at '" + file.lexically_normal().string() + "'" +
-                         (fs::is_directory(file, ec) ? " (it is a folder)" : "") + " (relative paths are to the scenario file)");
+  return file.lexically_normal().string();
+}
+
+// The file `key` names, found beside the scenario and checked (unopened) to be a regular file.
+InputFile named_file(const Scenario& s, const std::string& key, const std::string& what, const std::string& name) {
+  InputFile file{name.empty() ? name : beside(s, name), what, key, s.place_of(key)};
+  require_regular_file(file);
+  return file;
+}
+
+// The trace the [haptics] table names.
+void load_named_trace(const Written& written, Scenario& s) {
+  const std::string path = named_file(s, "haptics.trace", "trace file", written.texts.at("trace")).path;
   const auto gap = written.numbers.find("repair_gap_ms");
   const double repair_gap_ms = gap == written.numbers.end() ? 0.0 : gap->second;
-  const std::string path = file.lexically_normal().string();
   // Sized from its lines before it is read: a trace too large for this machine names the key.
   try {
     require_memory({trace_memory(path, "haptics.trace")}, available_host_memory(), "host");
@@ -398,13 +406,6 @@ void read_view(Reader& r, const toml::table& root, Scenario& s) {
   s.view = camera;
 }
 
-// A file named in the scenario, relative to the scenario file.
-std::string beside(const Scenario& s, const std::string& name) {
-  fs::path file = name;
-  if (file.is_relative()) file = fs::path(s.path).parent_path() / file;
-  return file.lexically_normal().string();
-}
-
 // What a run bakes of the mesh onto the panel (core/mesh/surface_bake.h), refused as the file is read
 // so that validate refuses it too: uvs that hold no texel's centre, and a texture stretched over
 // the mesh past kMaxLeastStretch.
@@ -432,12 +433,7 @@ TissueFile read_tissue_table(Reader& r, const toml::table& root, Scenario& s) {
   r.read(r.table(root, "tissue"), tissue_table(), tissue, s.scene, "tissue");
   if (!tissue.mesh.empty()) {
     refuse_what_a_mesh_replaces(s);
-    s.scene.mesh_source = beside(s, tissue.mesh);
-    std::error_code error;
-    if (!fs::is_regular_file(s.scene.mesh_source, error))
-      throw InputError(s.place_of("tissue.mesh"), "tissue.mesh",
-                       "cannot read " + s.scene.mesh_source + ": " +
-                           (fs::exists(s.scene.mesh_source, error) ? "not a regular file" : "no such file"));
+    s.scene.mesh_source = named_file(s, "tissue.mesh", "mesh file", tissue.mesh).path;
     s.scene.mesh = std::make_shared<const MeshSurface>(placed(load_tissue_mesh(s.scene.mesh_source), tissue.placement));
     refuse_a_mesh_the_panel_cannot_hold(s);
   }
@@ -448,7 +444,6 @@ void read_tissue(const TissueFile& tissue, Scenario& s, ReadTissue how) {
   Scene& scene = s.scene;
   MemoryParts parts = Pipeline::memory(scene, resolve(scene));
   parts.push_back(scene.domain.memory(4));
-  const SourcePlace texture_place = s.place_of("tissue.texture"), map_place = s.place_of("vessels.map");
   const VesselParams* vessels = scene.effects.find<VesselParams>();
   const bool procedural_vessels = vessels && vessels->map == "procedural";
   if (procedural_vessels && !tissue.texture.empty())
@@ -456,18 +451,18 @@ void read_tissue(const TissueFile& tissue, Scenario& s, ReadTissue how) {
                      "\"procedural\" reads the procedural tissue's vessels, and this scene's tissue is a texture: "
                      "name a PNG map of its vessels"));
   scene.tissue_source = "procedural";
+  std::optional<InputFile> texture, vessel_map;
   if (!tissue.texture.empty()) {
-    scene.tissue_source = beside(s, tissue.texture);
-    parts.push_back(texture_memory(read_tissue_png_header(scene.tissue_source, texture_place, "tissue.texture"),
-                                   "tissue.texture"));
+    texture = named_file(s, "tissue.texture", "texture", tissue.texture);
+    scene.tissue_source = texture->path;
+    parts.push_back(texture_memory(read_tissue_png_header(*texture), *texture));
   }
   // The vessels' map, like the tissue's texture: the PNG's header read and its memory counted first.
-  std::string map_file;
   if (vessels) {
     parts.push_back({"vessels.map", "the vessel density map", scene.domain.pixels() * Count(sizeof(float))});
     if (!procedural_vessels) {
-      map_file = beside(s, vessels->map);
-      parts.push_back(texture_memory(read_tissue_png_header(map_file, map_place, "vessels.map"), "vessels.map"));
+      vessel_map = named_file(s, "vessels.map", "vessel map", vessels->map);
+      parts.push_back(texture_memory(read_tissue_png_header(*vessel_map), *vessel_map));
     }
   }
   try {
@@ -477,15 +472,14 @@ void read_tissue(const TissueFile& tissue, Scenario& s, ReadTissue how) {
   }
   if (how == ReadTissue::header_only) return;
   const Domain& d = scene.domain;
-  scene.tissue = tissue.texture.empty()
-                     ? procedural_tissue(d.width_px, d.height_px, scene.seed)
-                     : load_tissue_png(scene.tissue_source, d.width_px, d.height_px, texture_place, "tissue.texture");
+  scene.tissue = texture ? load_tissue_png(*texture, d.width_px, d.height_px)
+                        : procedural_tissue(d.width_px, d.height_px, scene.seed);
   if (procedural_vessels) scene.vessel_density = procedural_vessel_density(d.width_px, d.height_px, scene.seed);
-  if (!map_file.empty()) {
-    const Image map = load_tissue_png(map_file, d.width_px, d.height_px, map_place, "vessels.map");
+  if (vessel_map) {
+    const Image density = load_tissue_png(*vessel_map, d.width_px, d.height_px);
     scene.vessel_density.resize(std::size_t(d.width_px) * std::size_t(d.height_px));
     for (std::size_t p = 0; p < scene.vessel_density.size(); ++p)
-      scene.vessel_density[p] = float(map.rgba[4 * p]) / 255.0f;
+      scene.vessel_density[p] = float(density.rgba[4 * p]) / 255.0f;
   }
 }
 

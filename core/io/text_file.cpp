@@ -5,18 +5,17 @@
 #include <filesystem>
 #include <sstream>
 
-#include "core/runtime/input_error.h"
+#include "core/runtime/input_file.h"
 #include "core/runtime/memory.h"
 
 namespace bleedsim {
 
 std::ifstream open_text_file(const std::string& path, const std::string& what) {
-  const SourcePlace file{path, 0, 0};
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw InputError(file, "", "cannot read " + what + " file: it is a folder");
+  const InputFile file{path, what + " file"};
+  require_regular_file(file);
   errno = 0;
   std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(file, "", "cannot read " + what + " file: " + std::strerror(errno ? errno : ENOENT));
+  if (!in) throw unreadable(file, std::strerror(errno ? errno : ENOENT));
   return in;
 }
 

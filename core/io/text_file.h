@@ -6,8 +6,9 @@
 
 namespace bleedsim {
 
-// `path` opened for reading. Throws InputError naming the file: "cannot read <what> file: <reason>"
-// (a folder, a missing file, no permission).
+// `path` opened for reading. Throws InputError naming the file, "cannot read <what> file '<path>':
+// <reason>", for anything but a regular file (a missing one, a directory, a named pipe: refused
+// unopened) and one it cannot open (no permission).
 std::ifstream open_text_file(const std::string& path, const std::string& what);
 
 // The bytes of `path`, with the same errors, refused before it is read when it holds more than

@@ -88,21 +88,23 @@ std::uint32_t big_endian(const unsigned char* at) {
   return std::uint32_t(at[0]) << 24 | std::uint32_t(at[1]) << 16 | std::uint32_t(at[2]) << 8 | at[3];
 }
 
+// "cannot decode <what> '<path>' as a PNG: <why>".
+InputError undecodable(const InputFile& file, const std::string& why) {
+  return InputError(file.where, file.key, "cannot decode " + file.what + " '" + file.path + "' as a PNG: " + why);
+}
+
 // The width and height the first kHeaderBytes state, checked against the cap.
-TextureHeader parse_header(const unsigned char* bytes, std::size_t size, const std::string& name,
-                           const SourcePlace& where, const std::string& key) {
-  const std::string texture = "texture '" + name + "'";
+TextureHeader parse_header(const unsigned char* bytes, std::size_t size, const InputFile& file) {
   if (size < kHeaderBytes || std::memcmp(bytes, kSignature, sizeof kSignature) != 0 ||
       std::memcmp(bytes + 12, "IHDR", 4) != 0)
-    throw InputError(where, key, "cannot decode " + texture + " as a PNG: it does not start with a PNG signature "
-                                 "and header");
+    throw undecodable(file, "it does not start with a PNG signature and header");
   const std::uint32_t width = big_endian(bytes + 16), height = big_endian(bytes + 20);
-  if (width == 0 || height == 0)
-    throw InputError(where, key, "cannot decode " + texture + " as a PNG: its header states a size of 0");
+  if (width == 0 || height == 0) throw undecodable(file, "its header states a size of 0");
   if (width > std::uint32_t(kMaxTextureSide) || height > std::uint32_t(kMaxTextureSide))
-    throw InputError(where, key, texture + " is " + std::to_string(width) + " x " + std::to_string(height) +
-                                     " px; a texture may be at most " + std::to_string(kMaxTextureSide) +
-                                     " px on a side (it is resampled to the panel anyway)");
+    throw InputError(file.where, file.key,
+                     file.what + " '" + file.path + "' is " + std::to_string(width) + " x " + std::to_string(height) +
+                         " px; a " + file.what + " may be at most " + std::to_string(kMaxTextureSide) +
+                         " px on a side (it is resampled to the panel anyway)");
   return {int(width), int(height), size};
 }
 
@@ -112,9 +114,7 @@ TextureHeader parse_header(const unsigned char* bytes, std::size_t size, const s
 // to no more than the rows the header states (counted by texture_memory()): a 400-byte file that
 // claimed a 2 GB chunk made stb ask for 2 GB (found by fuzz/tissue_png_fuzzer), and a small file of
 // compressed zeros can inflate a thousandfold.
-void check_chunks(const unsigned char* bytes, std::size_t size, const TextureHeader& header, const std::string& name,
-                  const SourcePlace& where, const std::string& key) {
-  const std::string texture = "texture '" + name + "'";
+void check_chunks(const unsigned char* bytes, std::size_t size, const TextureHeader& header, const InputFile& file) {
   const Count most = Count(2) * Count(header.height) * (Count(header.width) * 8 + 1);
   z_stream inflater{};
   bool inflating = false, stream_checked = false;
@@ -125,8 +125,7 @@ void check_chunks(const unsigned char* bytes, std::size_t size, const TextureHea
     const std::string type(reinterpret_cast<const char*>(bytes + at + 4), 4);
     if (length > size - at - 12) {
       if (inflating) inflateEnd(&inflater);
-      throw InputError(where, key, "cannot decode " + texture + " as a PNG: a chunk claims " + std::to_string(length) +
-                                       " bytes, more than the file holds after it");
+      throw undecodable(file, "a chunk claims " + std::to_string(length) + " bytes, more than the file holds after it");
     }
     if (type == "CgBI") stream_checked = true;  // Apple's raw deflate: left to stb, whose size it bounds
     if (type == "IDAT" && !stream_checked) {
@@ -141,9 +140,8 @@ void check_chunks(const unsigned char* bytes, std::size_t size, const TextureHea
         inflated += sizeof scratch - inflater.avail_out;
         if (Count(inflated) > most) {
           inflateEnd(&inflater);
-          throw InputError(where, key, "cannot decode " + texture + " as a PNG: its image data inflates to more " +
-                                           "than the " + std::to_string(header.width) + " x " +
-                                           std::to_string(header.height) + " px its header states");
+          throw undecodable(file, "its image data inflates to more than the " + std::to_string(header.width) + " x " +
+                                      std::to_string(header.height) + " px its header states");
         }
         // The stream's end, or an error stb will report: nothing more to count.
         if (status != Z_OK) {
@@ -158,73 +156,69 @@ void check_chunks(const unsigned char* bytes, std::size_t size, const TextureHea
   if (inflating) inflateEnd(&inflater);
 }
 
-// "cannot read texture 'x': <why>", for a file that cannot be opened or read.
-InputError unreadable(const std::string& path, const SourcePlace& where, const std::string& key, int error) {
-  return InputError(where, key, "cannot read texture '" + path + "': " + std::strerror(error ? error : EIO));
-}
+// For a file that cannot be opened or read: the OS's reason.
+InputError unreadable(const InputFile& file, int error) { return unreadable(file, std::strerror(error ? error : EIO)); }
 
-std::ifstream open_texture(const std::string& path, const SourcePlace& where, const std::string& key) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec))
-    throw InputError(where, key, "cannot read texture '" + path + "': it is a folder");
+std::ifstream open_png(const InputFile& file) {
+  require_regular_file(file);
   errno = 0;
-  std::ifstream file(path, std::ios::binary);
-  if (!file) throw unreadable(path, where, key, errno ? errno : ENOENT);
-  return file;
+  std::ifstream in(file.path, std::ios::binary);
+  if (!in) throw unreadable(file, errno ? errno : ENOENT);
+  return in;
 }
 
 }  // namespace
 
-TextureHeader read_tissue_png_header(const std::string& path, const SourcePlace& where, const std::string& key) {
-  std::ifstream file = open_texture(path, where, key);
+TextureHeader read_tissue_png_header(const InputFile& file) {
+  std::ifstream in = open_png(file);
   unsigned char bytes[kHeaderBytes] = {};
-  file.read(reinterpret_cast<char*>(bytes), kHeaderBytes);
-  TextureHeader header = parse_header(bytes, std::size_t(file.gcount()), path, where, key);
+  in.read(reinterpret_cast<char*>(bytes), kHeaderBytes);
+  TextureHeader header = parse_header(bytes, std::size_t(in.gcount()), file);
   std::error_code ec;
-  header.file_bytes = std::filesystem::file_size(path, ec);
-  if (ec) throw unreadable(path, where, key, ec.value());
+  header.file_bytes = std::filesystem::file_size(file.path, ec);
+  if (ec) throw unreadable(file, ec.value());
   return header;
 }
 
-MemoryPart texture_memory(const TextureHeader& header, const std::string& key) {
+MemoryPart texture_memory(const TextureHeader& header, const InputFile& file) {
   // Inflated: a filter byte and up to 4 channels of 2 bytes per pixel, each row; stb grows its buffer
   // by doubling, so up to twice that. Decoded: 4 channels of up to 2 bytes, and the 8-bit copy.
   const Count pixels = Count(header.width) * Count(header.height);
   const Count inflated = Count(2) * Count(header.height) * (Count(header.width) * 8 + 1);
-  return {key, "decoding the " + std::to_string(header.width) + " x " + std::to_string(header.height) + " px texture",
+  return {file.key,
+          "decoding the " + std::to_string(header.width) + " x " + std::to_string(header.height) + " px " + file.what,
           Count(header.file_bytes) + inflated + pixels * (8 + 4)};
 }
 
-Image load_tissue_png(const std::string& path, int width, int height, const SourcePlace& where,
-                      const std::string& key) {
+Image load_tissue_png(const InputFile& file, int width, int height) {
   if (width <= 0 || height <= 0) {
     throw std::invalid_argument("load_tissue_png: width and height must be positive (got " +
                                 std::to_string(width) + " x " + std::to_string(height) + ")");
   }
   // The header first, so that a file too large to decode is refused before it is read.
-  const TextureHeader header = read_tissue_png_header(path, where, key);
-  std::ifstream file = open_texture(path, where, key);
+  const TextureHeader header = read_tissue_png_header(file);
+  std::ifstream in = open_png(file);
   std::string bytes(header.file_bytes, '\0');
   errno = 0;
-  if (!file.read(bytes.data(), std::streamsize(bytes.size()))) throw unreadable(path, where, key, errno);
-  return decode_tissue_png(bytes, path, width, height, where, key);
+  if (!in.read(bytes.data(), std::streamsize(bytes.size()))) throw unreadable(file, errno);
+  return decode_tissue_png(bytes, file, width, height);
 }
 
-Image decode_tissue_png(const std::string& bytes, const std::string& name, int width, int height,
-                        const SourcePlace& where, const std::string& key, std::size_t room) {
+Image decode_tissue_png(const std::string& bytes, const InputFile& file, int width, int height, std::size_t room) {
   if (width <= 0 || height <= 0) {
     throw std::invalid_argument("decode_tissue_png: width and height must be positive (got " +
                                 std::to_string(width) + " x " + std::to_string(height) + ")");
   }
   const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
-  const TextureHeader header = parse_header(data, bytes.size(), name, where, key);
-  const MemoryPart need = texture_memory(header, key);
+  const TextureHeader header = parse_header(data, bytes.size(), file);
+  const MemoryPart need = texture_memory(header, file);
   if (need.bytes > Count(room))
-    throw InputError(where, key, need.what + " '" + name + "' needs " + human_bytes(need.bytes.as_double()) +
-                                     " of host memory, but only " + human_bytes(double(room)) + " is available");
+    throw InputError(file.where, file.key,
+                     need.what + " '" + file.path + "' needs " + human_bytes(need.bytes.as_double()) +
+                         " of host memory, but only " + human_bytes(double(room)) + " is available");
   if (bytes.size() > std::size_t(std::numeric_limits<int>::max()))
-    throw InputError(where, key, "cannot decode texture '" + name + "' as a PNG: the file is larger than 2 GiB");
-  check_chunks(data, bytes.size(), header, name, where, key);
+    throw undecodable(file, "the file is larger than 2 GiB");
+  check_chunks(data, bytes.size(), header, file);
   int src_w = 0;
   int src_h = 0;
   int channels_in_file = 0;
@@ -232,8 +226,7 @@ Image decode_tissue_png(const std::string& bytes, const std::string& name, int w
       stbi_load_from_memory(data, int(bytes.size()), &src_w, &src_h, &channels_in_file, 4));
   if (!pixels) {
     const char* reason = stbi_failure_reason();
-    throw InputError(where, key,
-                     "cannot decode texture '" + name + "' as a PNG: " + (reason ? reason : "unknown error"));
+    throw undecodable(file, reason ? reason : "unknown error");
   }
   if (src_w == width && src_h == height) {
     const std::size_t bytes_out = (Count(width) * Count(height) * 4).to<std::size_t>();

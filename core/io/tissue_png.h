@@ -6,7 +6,7 @@
 #include <string>
 
 #include "core/runtime/image.h"
-#include "core/runtime/input_error.h"
+#include "core/runtime/input_file.h"
 #include "core/runtime/memory.h"
 
 namespace bleedsim {
@@ -21,24 +21,25 @@ struct TextureHeader {
   std::uint64_t file_bytes = 0;
 };
 
-// Reads the signature and the IHDR chunk of `path` (24 bytes): throws InputError at `where`/`key`
-// when it cannot be read, is not a PNG, or states more than kMaxTextureSide pixels on a side.
-TextureHeader read_tissue_png_header(const std::string& path, const SourcePlace& where, const std::string& key);
+// The PNG files are a texture or a vessel map: messages name the file as what it is ("cannot read
+// vessel map 'v.png'"), at the key that named it.
 
-// The host memory decoding it takes, under `key`: the file, the inflated rows (which stb may hold
-// twice over while it grows them) and the decoded image, at 16 bits per channel at worst.
-MemoryPart texture_memory(const TextureHeader& header, const std::string& key);
+// Reads the signature and the IHDR chunk of the file (24 bytes): throws InputError when it is not a
+// regular file, cannot be read, is not a PNG, or states more than kMaxTextureSide pixels on a side.
+TextureHeader read_tissue_png_header(const InputFile& file);
+
+// The host memory decoding it takes, under the file's key: the file, the inflated rows (which stb
+// may hold twice over while it grows them) and the decoded image, at 16 bits per channel at worst.
+MemoryPart texture_memory(const TextureHeader& header, const InputFile& file);
 
 // Loads a PNG (any channel count, 8 or 16 bit) as RGBA8 and resamples it bilinearly to
-// width × height when its size differs. Throws InputError at `where`/`key` when it cannot,
-// std::invalid_argument for a size that is not positive.
-Image load_tissue_png(const std::string& path, int width, int height, const SourcePlace& where,
-                      const std::string& key);
+// width × height when its size differs. Throws InputError when it cannot, std::invalid_argument for
+// a size that is not positive.
+Image load_tissue_png(const InputFile& file, int width, int height);
 
-// The same from the file's bytes (`name` names it in messages), refusing, before decoding, a header
-// past the cap or whose decoding needs more than `room` bytes.
-Image decode_tissue_png(const std::string& bytes, const std::string& name, int width, int height,
-                        const SourcePlace& where, const std::string& key,
+// The same from the file's bytes (`file.path` names it in messages), refusing, before decoding, a
+// header past the cap or whose decoding needs more than `room` bytes.
+Image decode_tissue_png(const std::string& bytes, const InputFile& file, int width, int height,
                         std::size_t room = std::numeric_limits<std::size_t>::max());
 
 }  // namespace bleedsim

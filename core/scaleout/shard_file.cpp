@@ -14,6 +14,7 @@
 
 #include "core/runtime/hash.h"
 #include "core/runtime/input_error.h"
+#include "core/runtime/input_file.h"
 #include "core/scaleout/byte_codec.h"
 
 namespace bleedsim {
@@ -72,15 +73,15 @@ class ChecksummedFile {
 };
 
 std::vector<std::uint8_t> read_whole_file(const std::string& path) {
+  const InputFile file{path, "shard file"};
+  require_regular_file(file);
   const int fd = open(path.c_str(), O_RDONLY | O_CLOEXEC);
-  if (fd < 0) throw file_error(path, std::string("cannot read the shard file: ") + std::strerror(errno));
+  if (fd < 0) throw unreadable(file, std::strerror(errno));
   struct stat info {};
   std::vector<std::uint8_t> bytes;
   int reason = 0;
   if (fstat(fd, &info) != 0) {
     reason = errno;
-  } else if (!S_ISREG(info.st_mode)) {
-    reason = EISDIR;
   } else {
     bytes.resize(std::size_t(info.st_size));
     for (std::size_t done = 0; done < bytes.size() && !reason;) {
@@ -92,7 +93,7 @@ std::vector<std::uint8_t> read_whole_file(const std::string& path) {
     }
   }
   close(fd);
-  if (reason) throw file_error(path, std::string("cannot read the shard file: ") + std::strerror(reason));
+  if (reason) throw unreadable(file, std::strerror(reason));
   return bytes;
 }
 

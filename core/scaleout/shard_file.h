@@ -38,8 +38,8 @@ struct ShardContents {
 // naming the file and the OS error when it cannot be written.
 void write_shard(const std::string& path, const ShardContents& contents);
 
-// Throws InputError naming the file for one that is missing, unreadable, not a shard file, of
-// another format version, cut off, or damaged (its checksum).
+// Throws InputError naming the file for one that is missing, not a regular file (refused unopened),
+// unreadable, not a shard file, of another format version, cut off, or damaged (its checksum).
 ShardContents read_shard(const std::string& path);
 
 struct MergedShards {

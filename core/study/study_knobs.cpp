@@ -79,7 +79,7 @@ void set_resolution(Scene& s, double f) {
   const int w = s.domain.width_px, h = s.domain.height_px;
   scale_blur_pixels(s, f);
   s.tissue = s.tissue_source == "procedural" ? procedural_tissue(w, h, s.seed)
-                                             : load_tissue_png(s.tissue_source, w, h, {}, "tissue.texture");
+                                             : load_tissue_png({s.tissue_source, "texture", "tissue.texture"}, w, h);
   if (!s.effects.has<VesselParams>()) return;
   if (s.effects.get<VesselParams>().map == "procedural") {
     s.vessel_density = procedural_vessel_density(w, h, s.seed);

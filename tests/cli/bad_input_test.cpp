@@ -1,5 +1,7 @@
 // Bad input is a feature: each kind gives a message naming the file, line and key, exit code 2,
 // and leaves no output behind.
+#include <sys/stat.h>
+
 #include <filesystem>
 #include <string>
 
@@ -300,6 +302,85 @@ TEST_F(BadInput, ADefaultOutputFolderThatCannotBeMadeIsPlacedAtTheSceneName) {
   const CliResult run = run_shell("cd '" + dir_.string() + "' && '" + cli_path() + "' run bad.toml --backend cpu");
   EXPECT_EQ(run.exit_code, 2) << run.output;
   EXPECT_NE(run.output.find("bad.toml:2:8: scene.name: cannot "), std::string::npos) << run.output;
+}
+
+// Issue 38, item 6: a named pipe where bleedsim reads a file blocked it forever, validate too (opening
+// a pipe waits for a writer); as a trace it was "no trace file", as a vessel map "Operation not
+// supported" (item 15). Each input is looked at with stat() and refused unopened, named by its key and
+// as what it is. `timeout` turns a hang into exit 124, a failure, rather than a test that never ends.
+TEST_F(BadInput, ANamedPipeWhereverAFileIsNamedIsRefusedUnopened) {
+  const fs::path pipe = dir_ / "pipe";
+  ASSERT_EQ(mkfifo(pipe.c_str(), 0600), 0);
+  const std::string is_a_pipe = "'" + pipe.string() + "': it is a named pipe, not a regular file";
+  const struct {
+    const char* tables;
+    const char* place;
+    const char* key_and_what;
+  } inputs[] = {{"[tissue]\ntexture = \"pipe\"\n", "bad.toml:12:11: ", "tissue.texture: cannot read texture "},
+                {"[particles]\n[vessels]\nmap = \"pipe\"\n", "bad.toml:13:7: ", "vessels.map: cannot read vessel map "},
+                {"[tissue]\nmesh = \"pipe\"\n", "bad.toml:12:8: ", "tissue.mesh: cannot read mesh file "},
+                {"[haptics]\ntrace = \"pipe\"\n", "bad.toml:12:9: ", "haptics.trace: cannot read trace file "}};
+  for (const auto& input : inputs) {
+    const fs::path file = dir_ / "bad.toml";
+    write_text(file, scenario_with("", input.tables));
+    const std::string message = std::string(input.place) + input.key_and_what + is_a_pipe;
+    expect_cli_refused("validate '" + file.string() + "'", {message}, "timeout 20");
+    expect_cli_refused("run '" + file.string() + "' --backend cpu --out '" + out_.string() + "'", {message},
+                       "timeout 20");
+  }
+  expect_cli_refused("validate '" + pipe.string() + "'",
+                     {pipe.string() + ": cannot read scenario file: it is a named pipe, not a regular file"},
+                     "timeout 20");
+}
+
+// Issue 38, items 6 and 15: a named pipe as a shard blocked `study merge` forever; /dev/null was "Is a
+// directory".
+TEST_F(BadInput, AShardThatIsNotARegularFileIsRefusedSayingWhatItIs) {
+  const fs::path pipe = dir_ / "f.bleedshard";
+  ASSERT_EQ(mkfifo(pipe.c_str(), 0600), 0);
+  const auto merge = [&](const std::string& shard) {
+    return "study merge '" + shard + "' --no-plots --out '" + out_.string() + "'";
+  };
+  const std::string not_regular = ", not a regular file";
+  const std::string cannot_read = ": cannot read shard file: it is ";
+  expect_cli_refused(merge(pipe.string()), {pipe.string() + cannot_read + "a named pipe" + not_regular}, "timeout 20");
+  expect_cli_refused(merge("/dev/null"), {"/dev/null" + cannot_read + "a character device" + not_regular});
+  expect_cli_refused(merge(dir_.string()), {dir_.string() + cannot_read + "a directory" + not_regular});
+}
+
+// Issue 38, item 15: a vessel map's errors said "texture" throughout, and `map = ""` was "cannot read
+// texture ''". They say "vessel map" and name vessels.map; an empty path says the key is empty.
+TEST_F(BadInput, AVesselMapsErrorsNameTheVesselMapAndItsKey) {
+  write_text(dir_ / "junk.png", "this is not a PNG");
+  const auto map = [&](const std::string& name) {
+    return scenario_with("", "[particles]\n[vessels]\nmap = \"" + name + "\"\n");
+  };
+  const struct {
+    std::string name;
+    std::string message;
+  } cases[] = {
+      {"", "bad.toml:13:7: vessels.map: is empty; it names the vessel map to read"},
+      {"junk.png", "vessels.map: cannot decode vessel map '" + (dir_ / "junk.png").string() +
+                       "' as a PNG: it does not start with a PNG signature and header"},
+      {"nowhere.png", "vessels.map: cannot read vessel map '" + (dir_ / "nowhere.png").string() +
+                          "': No such file or directory"},
+      {"/dev/null", "vessels.map: cannot read vessel map '/dev/null': it is a character device, not a regular file"}};
+  for (const auto& c : cases) {
+    expect_refused(map(c.name), {c.message}, "", "timeout 20");
+    const CliResult validate = run_cli("validate '" + (dir_ / "bad.toml").string() + "'", "timeout 20");
+    EXPECT_EQ(validate.output.find("texture"), std::string::npos) << validate.output;
+  }
+}
+
+// Issue 38, item 15: a trace read through a pipe "is empty" (its size was read by a first pass, and a
+// pipe cannot be read twice). It is refused as what it is.
+TEST_F(BadInput, ATraceThroughAPipeIsRefusedAsAPipeNotAsEmpty) {
+  const std::string trace = source_dir() + "/scenarios/traces/single-stroke.csv";
+  const CliResult result = run_shell("cat '" + trace + "' | timeout 20 '" + cli_path() + "' trace info /dev/stdin");
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  EXPECT_NE(result.output.find("/dev/stdin: cannot read trace file: it is a named pipe, not a regular file"),
+            std::string::npos)
+      << result.output;
 }
 
 TEST_F(BadInput, UnknownBackendOrNegativePngInterval) {

@@ -127,8 +127,9 @@ std::string refusal(const std::string& haptic_lines) {
 TEST(HapticsScenario, RefusesWhatCannotBeFeltOrFound) {
   // Lines: [haptics] is line 10, the keys follow it.
   EXPECT_EQ(refusal("stiffness_N_per_m = 800\n"), "stroke.toml:10:1: haptics.trace: missing (required)");
-  EXPECT_NE(refusal("trace = \"../nowhere.csv\"\n").find("stroke.toml:11:9: haptics.trace: no trace file at"),
-            std::string::npos);
+  const std::string missing = refusal("trace = \"../nowhere.csv\"\n");
+  EXPECT_EQ(missing.rfind("stroke.toml:11:9: haptics.trace: cannot read trace file '", 0), 0u) << missing;
+  EXPECT_NE(missing.find("nowhere.csv': No such file or directory"), std::string::npos) << missing;
   const std::string stiff = refusal("trace = \"../stroke.csv\"\nstiffness_N_per_m = 3000\ndamping_Ns_per_m = 0.2\n");
   EXPECT_EQ(stiff.rfind("stroke.toml:12:21: haptics.stiffness_N_per_m: k·T/2 + |b| = 1.5 + 0.2 = 1.7 N·s/m", 0), 0u)
       << stiff;

@@ -465,7 +465,8 @@ TEST(LoadScenario, RefusesAFolder) {
     load_scenario(scratch.path().string());
     FAIL() << "loaded a folder";
   } catch (const InputError& e) {
-    EXPECT_EQ(std::string(e.what()), scratch.path().string() + ": cannot read scenario file: it is a folder");
+    EXPECT_EQ(std::string(e.what()),
+              scratch.path().string() + ": cannot read scenario file: it is a directory, not a regular file");
   }
 }
 

@@ -116,6 +116,9 @@ class LoadTissuePng : public ::testing::Test {
     return path;
   }
 
+  // The file as a scenario's tissue.texture names it.
+  InputFile texture(const std::string& path) const { return {path, "texture", key_, where_}; }
+
   const SourcePlace where_{"scenarios/x.toml", 12, 11};
   const std::string key_ = "tissue.texture";
   fs::path dir_;
@@ -132,14 +135,14 @@ const std::vector<std::uint8_t> k2x2 = {
 };
 
 TEST_F(LoadTissuePng, LoadsAPngOfThePanelsSizeExactly) {
-  const Image image = load_tissue_png(write_png("pattern.png", 2, 2, 4, k2x2), 2, 2, where_, key_);
+  const Image image = load_tissue_png(texture(write_png("pattern.png", 2, 2, 4, k2x2)), 2, 2);
   EXPECT_EQ(image.width, 2);
   EXPECT_EQ(image.height, 2);
   EXPECT_EQ(image.rgba, k2x2);
 }
 
 TEST_F(LoadTissuePng, ResamplesBilinearlyByTheDocumentedRule) {
-  const Image image = load_tissue_png(write_png("pattern.png", 2, 2, 4, k2x2), 4, 4, where_, key_);
+  const Image image = load_tissue_png(texture(write_png("pattern.png", 2, 2, 4, k2x2)), 4, 4);
   ASSERT_EQ(image.width, 4);
   ASSERT_EQ(image.height, 4);
   // Destination pixel i samples source coordinate (i + ½)·2/4 − ½: −0.25, 0.25, 0.75, 1.25.
@@ -174,10 +177,11 @@ TEST_F(LoadTissuePng, ResamplesBilinearlyByTheDocumentedRule) {
 
 TEST_F(LoadTissuePng, RefusesAFolderSayingSo) {
   try {
-    load_tissue_png(dir_.string(), 2, 2, where_, key_);
+    load_tissue_png(texture(dir_.string()), 2, 2);
     FAIL() << "a folder was accepted as a texture";
   } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("tissue.texture: cannot read texture '" + dir_.string() + "': it is a folder"),
+    EXPECT_NE(std::string(e.what()).find("tissue.texture: cannot read texture '" + dir_.string() +
+                                         "': it is a directory, not a regular file"),
               std::string::npos)
         << e.what();
   }
@@ -185,7 +189,7 @@ TEST_F(LoadTissuePng, RefusesAFolderSayingSo) {
 
 TEST_F(LoadTissuePng, LoadsGrayscaleAsEqualRgbAndOpaqueAlpha) {
   const std::vector<std::uint8_t> gray = {0, 77, 200, 255, 13, 128};
-  const Image image = load_tissue_png(write_png("gray.png", 3, 2, 1, gray), 3, 2, where_, key_);
+  const Image image = load_tissue_png(texture(write_png("gray.png", 3, 2, 1, gray)), 3, 2);
   for (int y = 0; y < 2; ++y) {
     for (int x = 0; x < 3; ++x) {
       const int expected = gray[std::size_t(y * 3 + x)];
@@ -200,7 +204,7 @@ TEST_F(LoadTissuePng, LoadsGrayscaleAsEqualRgbAndOpaqueAlpha) {
 TEST_F(LoadTissuePng, RefusesAMissingFileNamingTheKeyAndPath) {
   const std::string path = (dir_ / "nowhere.png").string();
   try {
-    load_tissue_png(path, 4, 4, where_, key_);
+    load_tissue_png(texture(path), 4, 4);
     FAIL() << "loaded a file that does not exist";
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()), "scenarios/x.toml:12:11: tissue.texture: cannot read texture '" + path +
@@ -214,7 +218,7 @@ TEST_F(LoadTissuePng, RefusesAFileThatIsNotAPng) {
   const std::string path = (dir_ / "junk.png").string();
   std::ofstream(path, std::ios::binary) << "GIF89a, or anything else that is not a PNG";
   try {
-    load_tissue_png(path, 4, 4, where_, key_);
+    load_tissue_png(texture(path), 4, 4);
     FAIL() << "decoded junk";
   } catch (const InputError& e) {
     const std::string what = e.what();
@@ -226,8 +230,8 @@ TEST_F(LoadTissuePng, RefusesAFileThatIsNotAPng) {
 
 TEST_F(LoadTissuePng, RefusesSizesThatAreNotPositive) {
   const std::string path = write_png("pattern.png", 2, 2, 4, k2x2);
-  EXPECT_THROW(load_tissue_png(path, 0, 4, where_, key_), std::invalid_argument);
-  EXPECT_THROW(load_tissue_png(path, 4, -1, where_, key_), std::invalid_argument);
+  EXPECT_THROW(load_tissue_png(texture(path), 0, 4), std::invalid_argument);
+  EXPECT_THROW(load_tissue_png(texture(path), 4, -1), std::invalid_argument);
 }
 
 
@@ -246,27 +250,27 @@ TEST_F(LoadTissuePng, RefusesATexturePastTheCapFromItsHeaderAlone) {
   const std::string path = (dir_ / "huge.png").string();
   std::ofstream(path, std::ios::binary) << png_header(20000, 300);
   try {
-    load_tissue_png(path, 64, 48, where_, key_);
+    load_tissue_png(texture(path), 64, 48);
     FAIL() << "a 20000 px wide texture was accepted";
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()), "scenarios/x.toml:12:11: tissue.texture: texture '" + path +
                                          "' is 20000 x 300 px; a texture may be at most 16384 px on a side (it is "
                                          "resampled to the panel anyway)");
   }
-  EXPECT_THROW(read_tissue_png_header(path, where_, key_), InputError) << "bleedsim validate reads only the header";
+  EXPECT_THROW(read_tissue_png_header(texture(path)), InputError) << "bleedsim validate reads only the header";
 }
 
 TEST_F(LoadTissuePng, ReadsTheHeaderAloneAndCountsWhatDecodingTakes) {
   const std::string path = (dir_ / "header-only.png").string();
   std::ofstream(path, std::ios::binary) << png_header(1000, 500);
-  const TextureHeader header = read_tissue_png_header(path, where_, key_);
+  const TextureHeader header = read_tissue_png_header(texture(path));
   EXPECT_EQ(header.width, 1000);
   EXPECT_EQ(header.height, 500);
   EXPECT_EQ(header.file_bytes, 29u);
   // The file, twice the inflated rows (2 · 500 · (1 + 8 · 1000)), the decoded 16-bit RGBA and the
   // 8-bit copy (12 bytes a pixel).
-  EXPECT_EQ(texture_memory(header, key_).bytes, Count(29 + 2 * 500 * 8001 + 12 * 1000 * 500));
-  EXPECT_EQ(texture_memory(header, key_).key, key_);
+  EXPECT_EQ(texture_memory(header, texture(path)).bytes, Count(29 + 2 * 500 * 8001 + 12 * 1000 * 500));
+  EXPECT_EQ(texture_memory(header, texture(path)).key, key_);
 }
 
 // A PNG chunk: its length, type, data and CRC (stb does not check the CRC; zlib's is correct here).
@@ -290,7 +294,7 @@ TEST_F(LoadTissuePng, RefusesChunksAndImageDataPastWhatTheHeaderStates) {
   const std::string start = std::string("\x89PNG\r\n\x1a\n", 8) + ihdr + std::string(4, '\0');
   std::string claims = start + std::string("\x7f\xff\xff\xffIDAT", 8) + "short";
   try {
-    decode_tissue_png(claims, "claims.png", 2, 2, where_, key_);
+    decode_tissue_png(claims, texture("claims.png"), 2, 2);
     FAIL() << "a 2 GiB chunk in a small file was accepted";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("a chunk claims 2147483647 bytes, more than the file holds"),
@@ -305,7 +309,7 @@ TEST_F(LoadTissuePng, RefusesChunksAndImageDataPastWhatTheHeaderStates) {
   packed.resize(packed_size);
   const std::string bomb = start + chunk("IDAT", packed) + chunk("IEND", "");
   try {
-    decode_tissue_png(bomb, "bomb.png", 2, 2, where_, key_);
+    decode_tissue_png(bomb, texture("bomb.png"), 2, 2);
     FAIL() << "a deflate bomb was inflated";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("its image data inflates to more than the 1 x 1 px its header states"),
@@ -317,9 +321,9 @@ TEST_F(LoadTissuePng, RefusesToDecodeWhatDoesNotFitTheRoom) {
   const std::string path = write_png("pattern.png", 2, 2, 4, k2x2);
   std::ifstream in(path, std::ios::binary);
   const std::string bytes(std::istreambuf_iterator<char>(in), {});
-  EXPECT_EQ(decode_tissue_png(bytes, path, 2, 2, where_, key_).rgba, k2x2);
+  EXPECT_EQ(decode_tissue_png(bytes, texture(path), 2, 2).rgba, k2x2);
   try {
-    decode_tissue_png(bytes, path, 2, 2, where_, key_, 100);
+    decode_tissue_png(bytes, texture(path), 2, 2, 100);
     FAIL() << "decoded in 100 bytes";
   } catch (const InputError& e) {
     EXPECT_EQ(e.key(), key_);

@@ -256,7 +256,7 @@ TEST(ViewRender, TheTurbinateFromAnEndoscope) {
   }
 
   // The mucosa texture, with a stain of blood (a Gaussian of dark red) across the middle.
-  Image texture = load_tissue_png(test::source_dir() + "/scenarios/textures/mucosa-200x150.png", 200, 150, {}, "texture");
+  Image texture = load_tissue_png({test::source_dir() + "/scenarios/textures/mucosa-200x150.png", "texture"}, 200, 150);
   for (int j = 0; j < texture.height; ++j)
     for (int i = 0; i < texture.width; ++i) {
       const double u = (i + 0.5) / texture.width, v = (j + 0.5) / texture.height;

@@ -223,8 +223,10 @@ TEST(ShardFile, AFileThatIsNotAShardIsRefused) {
   std::ofstream(text) << "shard 0 of 3, done\n";
   EXPECT_TRUE(has(refusal([&] { read_shard(text); }), text + ": not a bleedsim shard file"));
   const std::string missing = (dir / "missing.bleedshard").string();
-  EXPECT_TRUE(has(refusal([&] { read_shard(missing); }), missing + ": cannot read the shard file: No such file or directory"));
-  EXPECT_TRUE(has(refusal([&] { read_shard(dir.string()); }), "cannot read the shard file: Is a directory"));
+  EXPECT_TRUE(
+      has(refusal([&] { read_shard(missing); }), missing + ": cannot read shard file: No such file or directory"));
+  EXPECT_TRUE(has(refusal([&] { read_shard(dir.string()); }),
+                  dir.string() + ": cannot read shard file: it is a directory, not a regular file"));
 }
 
 TEST(ShardFile, AWriteReplacesTheFileWholeOrLeavesNothing) {
