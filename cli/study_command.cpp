@@ -18,6 +18,7 @@
 #include "cli/progress.h"
 #include "core/runtime/build_info.h"
 #include "core/runtime/input_error.h"
+#include "core/runtime/input_file.h"
 #include "core/runtime/message_text.h"
 #include "core/io/scenario.h"
 #include "core/runtime/hash.h"
@@ -124,14 +125,16 @@ void print_results(const Study& study, const StudyResult& result) {
   std::printf("reference (%s): %s\n", study.reference_description().c_str(), result.check.verdict.c_str());
 }
 
-// What a shard carries so that `merge` can build the same study: the scenario's path and the study's
-// options, the backends as they were resolved (a merge needs no device).
-constexpr std::uint32_t kStudyDescriptionVersion = 1;
+// What a shard carries so that `merge` can build the same study from any folder: the scenario's text
+// and its absolute path (which the files it names are found beside), the study's options, the
+// backends as they were resolved (a merge needs no device).
+constexpr std::uint32_t kStudyDescriptionVersion = 2;
 
-std::vector<std::uint8_t> describe(const StudyOptions& options, const StudySpec& spec) {
+std::vector<std::uint8_t> describe(const Scenario& scenario, const StudyOptions& options, const StudySpec& spec) {
   ByteWriter out;
   out.u32(kStudyDescriptionVersion);
-  out.text(options.scenario);
+  out.text(fs::absolute(scenario.path).lexically_normal().string());
+  out.text(scenario.text);
   out.u32(std::uint32_t(options.knobs.size()));
   for (const std::string& knob : options.knobs) out.text(knob);
   out.u32(std::uint32_t(spec.backends.size()));
@@ -144,7 +147,8 @@ std::vector<std::uint8_t> describe(const StudyOptions& options, const StudySpec&
 }
 
 struct DescribedStudy {
-  std::string scenario;
+  std::string scenario_path;
+  std::string scenario_text;
   StudySpec spec;
 };
 
@@ -154,7 +158,8 @@ DescribedStudy read_description(const std::vector<std::uint8_t>& bytes, const st
   try {
     if (in.u32("the description's version") != kStudyDescriptionVersion)
       throw InputError({}, shard, "written by another version of bleedsim study (its description's format differs)");
-    d.scenario = in.text("the scenario's path");
+    d.scenario_path = in.text("the scenario's path");
+    d.scenario_text = in.text("the scenario's text");
     for (std::uint32_t k = in.u32("the knob count"); k > 0; --k) d.spec.knobs.push_back(parse_knob(in.text("a knob")));
     for (std::uint32_t b = in.u32("the backend count"); b > 0; --b) d.spec.backends.push_back(BackendKind(in.u32("a backend")));
     const bool timed = in.u32("the duration's flag") != 0;
@@ -169,9 +174,11 @@ DescribedStudy read_description(const std::vector<std::uint8_t>& bytes, const st
 }
 
 // Names one study: what it runs (Study::key: the scene, its settings, seeds, backends and grid), the
-// scenario's text and the build that ran it (shards of another build must not mix).
+// scenario's text, the bytes of every file it names (the key hashes the tissue's pixels, not a trace,
+// a mesh or a vessel map) and the build that ran it (shards of another build must not mix).
 std::string fingerprint_of(const Study& study, const Scenario& scenario) {
-  const std::string text = hex64(study.key()) + "\n" + scenario.text + "\n" + git_sha();
+  std::string text = hex64(study.key()) + "\n" + scenario.text + "\n" + git_sha();
+  for (const InputFile& file : scenario.files) text += "\n" + file.key + " " + hex64(hash_of_file(file));
   return hex64(fnv1a64(text.data(), text.size()));
 }
 
@@ -324,7 +331,8 @@ int study_command(const StudyOptions& options, const Ranks& ranks) {
 
   if (shard) {
     const fs::path path = dir / shard_file_name(*shard);
-    write_shard(path.string(), {fingerprint_of(study, scenario), describe(options, spec), costs.size(), *shard, results});
+    write_shard(path.string(),
+                {fingerprint_of(study, scenario), describe(scenario, options, spec), costs.size(), *shard, results});
     std::printf("bleedsim study: wrote %s (%zu of %zu jobs); merge the %d shards with: bleedsim study merge\n",
                 path.string().c_str(), results.size(), costs.size(), shard->count);
     return 0;
@@ -337,12 +345,14 @@ int study_merge_command(const StudyMergeOptions& options) {
   const MergedShards merged = merge_shards(options.shards);
   const std::string& first = options.shards.front();
   const DescribedStudy described = read_description(merged.study, first);
-  const Scenario scenario = load_scenario(described.scenario);
+  // The scenario as the shards ran it, wherever this runs: its text from the shard, the files it names
+  // beside its absolute path.
+  const Scenario scenario = parse_scenario(described.scenario_text, described.scenario_path);
   const Study study(scenario.scene, described.spec);
   if (fingerprint_of(study, scenario) != merged.fingerprint)
     throw InputError({}, first,
-                     "its study is not the one " + described.scenario + " and this build make now (the scenario, the "
-                     "files it names or bleedsim changed since the shards were written)");
+                     "its study is not the one " + described.scenario_path + "'s text and this build make now (a "
+                     "file it names or bleedsim changed since the shards were written)");
   OutputFolder folder(out_dir_for(options.out_dir, study.scene()), SourcePlace{}, "--out");
   if (!options.quiet)
     std::printf("bleedsim study merge: %s: %zu shards, %zu jobs\n", study.scene().name.c_str(), merged.shard_count,

@@ -343,10 +343,12 @@ std::string beside(const Scenario& s, const std::string& name) {
   return file.lexically_normal().string();
 }
 
-// The file `key` names, found beside the scenario and checked (unopened) to be a regular file.
-InputFile named_file(const Scenario& s, const std::string& key, const std::string& what, const std::string& name) {
+// The file `key` names, found beside the scenario, checked (unopened) to be a regular file, and kept
+// in Scenario::files.
+InputFile named_file(Scenario& s, const std::string& key, const std::string& what, const std::string& name) {
   InputFile file{name.empty() ? name : beside(s, name), what, key, s.place_of(key)};
   require_regular_file(file);
+  s.files.push_back(file);
   return file;
 }
 

@@ -11,6 +11,7 @@
 #include "core/io/scenario_tables.h"
 #include "core/mesh/view_render.h"
 #include "core/runtime/input_error.h"
+#include "core/runtime/input_file.h"
 #include "core/runtime/params.h"
 #include "core/scene/scene.h"
 
@@ -23,6 +24,9 @@ struct Scenario {
   std::string text;  // its text, recorded in every output for provenance
   std::map<std::string, SourcePlace> places;  // where each key was written, for later messages
   std::optional<ViewCamera> view;             // [view]: the tissue mesh as an endoscope sees it
+  // The files it names (a trace, a mesh, a texture, a vessel map), in the order read, each with its
+  // key: what a study's fingerprint hashes beside the text.
+  std::vector<InputFile> files;
 
   // Where `key` was written (the file alone when it was not).
   SourcePlace place_of(const std::string& key) const;

@@ -1,6 +1,12 @@
 #include "core/runtime/input_file.h"
 
+#include <array>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+
+#include "core/runtime/hash.h"
 
 namespace bleedsim {
 namespace {
@@ -36,6 +42,19 @@ void require_regular_file(const InputFile& file) {
   if (error) throw unreadable(file, error.message());
   if (status.type() == fs::file_type::regular) return;
   throw unreadable(file, "it is " + kind_of(status.type()) + ", not a regular file");
+}
+
+std::uint64_t hash_of_file(const InputFile& file) {
+  require_regular_file(file);
+  errno = 0;
+  std::ifstream in(file.path, std::ios::binary);
+  if (!in) throw unreadable(file, std::strerror(errno ? errno : EIO));
+  std::uint64_t hash = fnv1a64(nullptr, 0);
+  std::array<char, 1 << 16> piece;
+  while (in.read(piece.data(), piece.size()) || in.gcount() > 0)
+    hash = fnv1a64(piece.data(), std::size_t(in.gcount()), hash);
+  if (in.bad()) throw unreadable(file, std::strerror(errno ? errno : EIO));
+  return hash;
 }
 
 }  // namespace bleedsim

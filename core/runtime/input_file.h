@@ -1,6 +1,7 @@
 #pragma once
 // A file the user names (a scenario, a texture, a vessel map, a mesh, a trace, a shard), as the
 // messages about it name it, and the check every reader makes before opening one.
+#include <cstdint>
 #include <string>
 
 #include "core/runtime/input_error.h"
@@ -23,5 +24,9 @@ InputError unreadable(const InputFile& file, const std::string& why);
 // directory", "a character device"). Looks with stat() and never opens the file: opening a named
 // pipe waits for a writer, forever.
 void require_regular_file(const InputFile& file);
+
+// FNV-1a 64 of the file's bytes, read in pieces; the same refusals as require_regular_file, and
+// unreadable() for a file that cannot be read.
+std::uint64_t hash_of_file(const InputFile& file);
 
 }  // namespace bleedsim

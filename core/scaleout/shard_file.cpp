@@ -257,7 +257,8 @@ MergedShards merge_shards(const std::vector<std::string>& paths) {
     const std::string first = "'" + paths[0] + "'";
     if (shard.fingerprint != merged.fingerprint)
       throw file_error(paths[f], "a shard of another study than " + first + " (fingerprint " + shard.fingerprint +
-                                     ", not " + merged.fingerprint + "): its scenario or study options differ");
+                                     ", not " + merged.fingerprint +
+                                     "): its scenario, a file it names or the study options differ");
     if (shard.study != merged.study)
       throw file_error(paths[f], "its study's description differs from " + first + "'s, under the same fingerprint");
     if (std::size_t(shard.shard.count) != merged.shard_count || shard.job_count != job_count)

@@ -26,7 +26,7 @@ ShardId parse_shard(const std::string& text);
 std::string shard_file_name(ShardId shard);
 
 struct ShardContents {
-  std::string fingerprint;         // names the study: a hash of the scenario's text and the study options
+  std::string fingerprint;         // names the study: a hash of the scenario, the files it names and the options
   std::vector<std::uint8_t> study; // what the merge needs to analyse the records (the caller's bytes)
   std::size_t job_count = 0;       // jobs in the whole study
   ShardId shard;

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <functional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -115,6 +116,101 @@ TEST(StudyCommand, TwoRunsGiveTheSameDataTimingsAside) {
   };
   EXPECT_EQ(data("a"), data("b"));
   EXPECT_NE(data("a").find("GROUP \"/ladders\""), std::string::npos);
+}
+
+// A study split in two shards and merged, each command run in `folder` (the shards written to `shards`).
+std::string shard_command(const std::string& scene, const std::string& shards, int index) {
+  return "study '" + scene + "' --backend cpu --threads 2 --knob blur_radius=1,2 --seeds 2 --quiet --shard " +
+         std::to_string(index) + "/2 --out '" + shards + "'";
+}
+CliResult run_in(const fs::path& folder, const std::string& arguments) {
+  return run_shell("cd '" + folder.string() + "' && '" + cli_path() + "' " + arguments);
+}
+std::string merge_command(const std::string& shards, const fs::path& out) {
+  return "study merge '" + shards + "/shard-0-of-2.bleedshard' '" + shards + "/shard-1-of-2.bleedshard' --no-plots " +
+         "--quiet --out '" + out.string() + "'";
+}
+
+// Issue 38, item 7: shards run with another trace, mesh or vessel map merged (exit 0) into a study
+// that matched neither: the fingerprint hashed the scenario's text, not the files it names. Shard 1
+// is run again with each file changed in turn; the merge refuses it.
+TEST(StudyMerge, RefusesShardsRunWithAnotherTraceMeshOrVesselMap) {
+  const fs::path folder = scratch_folder();
+  const std::string textures = source_dir() + "/scenarios/textures/", traces = source_dir() + "/scenarios/traces/";
+  const std::string panel = "v 0 0 0\nv 8 0 0\nv 8 -6 0\nv 0 -6 0\nvt 0 0\nvt 1 0\nvt 1 1\nvt 0 1\n";
+  const auto copy = [&](const std::string& from, const char* to) {
+    fs::copy_file(from, folder / to, fs::copy_options::overwrite_existing);
+  };
+  const struct {
+    const char* name;
+    std::function<void()> write, change;
+  } files[] = {
+      {"stroke.csv", [&] { copy(traces + "single-stroke.csv", "stroke.csv"); },
+       [&] { copy(traces + "quick-strokes.csv", "stroke.csv"); }},
+      {"panel.obj", [&] { write_text(folder / "panel.obj", panel + "f 1/1 2/2 3/3\nf 1/1 3/3 4/4\n"); },
+       [&] { write_text(folder / "panel.obj", panel + "f 1/1 2/2 4/4\nf 2/2 3/3 4/4\n"); }},
+      {"vessels.png", [&] { copy(textures + "vessels-gradient-64x48.png", "vessels.png"); },
+       [&] { copy(textures + "vessel-edges-16x8.png", "vessels.png"); }}};
+  for (const auto& file : files) file.write();
+  write_text(folder / "named.toml",
+             "[scene]\nname = \"named\"\nwidth_px = 32\nheight_px = 24\nwidth_mm = 8.0\nheight_mm = 6.0\n"
+             "duration_s = 0.2\n[tissue]\nmesh = \"panel.obj\"\n[haptics]\ntrace = \"stroke.csv\"\n[spread]\n"
+             "radius_mm = 2.0\n[particles]\ncapacity = 1024\ndesign_depth_mm = 1\n[vessels]\nmap = \"vessels.png\"\n"
+             "[blur]\n[[cut]]\nx_mm = 4.0\ny_mm = 2.0\n");
+  for (const int shard : {0, 1}) ASSERT_EQ(run_in(folder, shard_command("named.toml", "shards", shard)).exit_code, 0);
+  const CliResult same = run_in(folder, merge_command("shards", folder / "merged"));
+  ASSERT_EQ(same.exit_code, 0) << "the shards of one study merge: " << same.output;
+  for (const auto& file : files) {
+    file.change();
+    const CliResult shard = run_in(folder, shard_command("named.toml", "shards", 1));
+    ASSERT_EQ(shard.exit_code, 0) << shard.output;
+    file.write();
+    const fs::path out = folder / (std::string("merged-") + file.name);
+    const CliResult merged = run_in(folder, merge_command("shards", out));
+    EXPECT_EQ(merged.exit_code, 2) << file.name << ": " << merged.output;
+    EXPECT_NE(merged.output.find("shards/shard-1-of-2.bleedshard: a shard of another study than "
+                                 "'shards/shard-0-of-2.bleedshard'"),
+              std::string::npos)
+        << file.name << ": " << merged.output;
+    EXPECT_FALSE(fs::exists(out)) << file.name;
+  }
+}
+
+// Issue 38, item 18: a merge found the scenario by the path the shards were given, relative to the
+// folder they ran in: shards run in study/ with `--out ../sh` and merged from its parent failed with
+// "hs.toml: cannot read scenario file". A shard carries the scenario's text and its absolute path, so
+// the merge runs in any folder, even once the scenario file itself is gone; it reads the files the
+// scenario names beside that path, and refuses one changed since the shards ran.
+TEST(StudyMerge, MergesShardsFromAnotherFolderThanTheyRanIn) {
+  const fs::path folder = scratch_folder();
+  fs::create_directories(folder / "study");
+  fs::copy_file(source_dir() + "/scenarios/traces/single-stroke.csv", folder / "study" / "stroke.csv");
+  write_text(folder / "study" / "hs.toml",
+             "[scene]\nname = \"hs\"\nwidth_px = 32\nheight_px = 24\nwidth_mm = 8.0\nheight_mm = 6.0\n"
+             "duration_s = 0.2\n[haptics]\ntrace = \"stroke.csv\"\n[spread]\nradius_mm = 2.0\n[particles]\n"
+             "capacity = 1024\ndesign_depth_mm = 1\n[blur]\n[[cut]]\nx_mm = 4.0\ny_mm = 2.0\n");
+  for (const int shard : {0, 1}) {
+    const CliResult result = run_in(folder / "study", shard_command("hs.toml", "../sh", shard));
+    ASSERT_EQ(result.exit_code, 0) << result.output;
+  }
+  fs::rename(folder / "study" / "hs.toml", folder / "study" / "hs-edited-since.toml");
+  const CliResult merged = run_in(folder, merge_command("sh", "merged"));
+  ASSERT_EQ(merged.exit_code, 0) << merged.output;
+  const std::vector<std::string> csv = lines_of(read_bytes(folder / "merged" / "study.csv"));
+  // The header, the reference, the scene, blur_radius 1 and its refinement 4, the noise floor.
+  ASSERT_EQ(csv.size(), 6u) << read_bytes(folder / "merged" / "study.csv");
+  EXPECT_EQ(csv[1].rfind("hs,reference,,reference,cpu,ok,2,", 0), 0u) << csv[1];
+
+  fs::copy_file(source_dir() + "/scenarios/traces/quick-strokes.csv", folder / "study" / "stroke.csv",
+                fs::copy_options::overwrite_existing);
+  const CliResult changed = run_in(folder, merge_command("sh", "merged-again"));
+  EXPECT_EQ(changed.exit_code, 2) << changed.output;
+  EXPECT_NE(changed.output.find("sh/shard-0-of-2.bleedshard: its study is not the one " +
+                                (folder / "study" / "hs.toml").string() +
+                                "'s text and this build make now (a file it names or bleedsim changed"),
+            std::string::npos)
+      << changed.output;
+  EXPECT_FALSE(fs::exists(folder / "merged-again"));
 }
 
 // A study's options and the message that refuses them.
