@@ -73,11 +73,14 @@ std::vector<BackendKind> backends_for(const std::string& which) {
   return cuda ? std::vector<BackendKind>{BackendKind::cuda, BackendKind::cpu} : std::vector<BackendKind>{BackendKind::cpu};
 }
 
-// scripts/plot-study from the working folder or the source tree, with Debian's Python (or the one
-// BLEEDSIM_PYTHON names, as the tests do).
+// scripts/plot-study from the working folder or the source tree (the one BLEEDSIM_SOURCE_DIR names,
+// as the tests do where the tree is not where it was built, else the build's), with Debian's Python
+// (or the one BLEEDSIM_PYTHON names).
 std::string plot_command(const fs::path& folder) {
   const fs::path here = "scripts/plot-study";
-  const fs::path script = fs::exists(here) ? here : fs::path(BLEEDSIM_SOURCE_DIR) / here;
+  const char* source = std::getenv("BLEEDSIM_SOURCE_DIR");
+  const fs::path tree = source && *source ? source : BLEEDSIM_SOURCE_DIR;
+  const fs::path script = fs::exists(here) ? here : tree / here;
   const char* python = std::getenv("BLEEDSIM_PYTHON");
   return "'" + std::string(python ? python : "/usr/bin/python3") + "' '" + script.string() + "' '" + folder.string() + "'";
 }

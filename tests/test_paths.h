@@ -1,7 +1,8 @@
 #pragma once
-// Where tests find the repository, the CLI and a scratch folder: compiled in, unless the
-// environment says otherwise (scripts/gpu-check runs binaries built here from another folder on
-// the GPU machine).
+// Where tests find the repository, the CLI and a scratch folder: the environment's, else the
+// build's (scripts/gpu-check runs binaries built here with the tree in another folder on the GPU
+// machine). A test reads the tree through source_dir() alone: the build's path is compiled in under
+// a name of its own, for this file, and tests/source_elsewhere_check.py runs the tests with it hidden.
 #include <cstdlib>
 #include <string>
 
@@ -12,7 +13,7 @@ inline std::string from_env_or(const char* name, const char* fallback) {
   return value && *value ? value : fallback;
 }
 
-inline std::string source_dir() { return from_env_or("BLEEDSIM_SOURCE_DIR", BLEEDSIM_SOURCE_DIR); }
+inline std::string source_dir() { return from_env_or("BLEEDSIM_SOURCE_DIR", BLEEDSIM_SOURCE_DIR_AS_BUILT); }
 // Debian's Python, which has h5py (the first python3 on PATH may not).
 inline std::string python() { return from_env_or("BLEEDSIM_PYTHON", "/usr/bin/python3"); }
 #ifdef BLEEDSIM_BINARY_DIR

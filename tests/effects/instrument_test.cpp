@@ -20,6 +20,7 @@
 #include "core/simulation/simulation.h"
 #include "tests/effects/bleeding_scenes.h"
 #include "tests/runtime/field_values.h"
+#include "tests/test_paths.h"
 
 namespace bleedsim {
 namespace {
@@ -289,7 +290,7 @@ TEST(Contact, ItsWakeThroughAPoolClosesAgain) {
 // the tip in contact with a suction button held, takes nothing in a frame unless such a tick is
 // in it or the tip stays so from the frame before, and has taken blood by the end.
 TEST(Suction, TheStylusSucksOnlyInContactWithItsButtonHeld) {
-  const Scenario scenario = load_scenario(std::string(BLEEDSIM_SOURCE_DIR) + "/scenarios/falcon-suction.toml");
+  const Scenario scenario = load_scenario(test::source_dir() + "/scenarios/falcon-suction.toml");
   Simulation sim(scenario.scene, kCpu);
   bool on = false;  // the last tick's suction: it holds until the next
   std::uint64_t before = 0;

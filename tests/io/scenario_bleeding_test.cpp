@@ -7,6 +7,7 @@
 
 #include "core/io/scenario.h"
 #include "tests/io/scenario_text.h"
+#include "tests/test_paths.h"
 
 namespace bleedsim {
 namespace {
@@ -43,7 +44,7 @@ TEST(ScenarioVessels, BadSettingsAreRefusedAtTheirKey) {
 // A grey map PNG is read as its grey over 255, resampled to the panel: the example's gradient,
 // 48 rows rising by 255 · (j + ½)/48, on a 64 × 48 panel reads back row by row.
 TEST(ScenarioVessels, AMapPngIsReadAsItsRedChannel) {
-  const std::string text = kBase + "[particles]\n[vessels]\nmap = \"" + std::string(BLEEDSIM_SOURCE_DIR) +
+  const std::string text = kBase + "[particles]\n[vessels]\nmap = \"" + source_dir() +
                            "/scenarios/textures/vessels-gradient-64x48.png\"\n";
   const Scene scene = parse_scenario(text, kPath).scene;
   ASSERT_EQ(scene.vessel_density.size(), std::size_t(64 * 48));
@@ -94,7 +95,7 @@ TEST(ScenarioTip, BadPathsAreRefusedAtTheirPoint) {
                          "missing (required)"));
   EXPECT_TRUE(refused_at(with_line(kPathScene, 26, "x_mm = nan") + "[suction]\n", 26, "tip[1].x_mm", "nan"));
   EXPECT_TRUE(refused_at(kBase + "[particles]\n[tip]\nt_s = 0.0\n", kEnd + 1, "tip", "expected [[tip]] tables"));
-  const std::string trace = std::string(BLEEDSIM_SOURCE_DIR) + "/scenarios/traces/single-stroke.csv";
+  const std::string trace = source_dir() + "/scenarios/traces/single-stroke.csv";
   EXPECT_TRUE(refused_at(kPathScene + "[suction]\n[haptics]\ntrace = \"" + trace + "\"\n", 20, "tip",
                          "a scene has one instrument"));
 }
