@@ -6,7 +6,6 @@
 #include <sys/statvfs.h>
 
 #include <cstdint>
-#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <limits>
@@ -18,95 +17,21 @@
 
 #include "core/haptics/haptic_channel.h"
 #include "core/io/hdf5_filters.h"
+#include "core/io/hdf5_handles.h"
 #include "core/runtime/count.h"
 #include "core/runtime/memory.h"
 
 namespace bleedsim {
 namespace {
 
-// --- Handles -----------------------------------------------------------------------------------
-
-// Owns one HDF5 identifier and closes it with the function that matches its kind. close() reports
-// the status (finish() must know the file really closed); the destructor cannot, and ignores it.
-template <herr_t (*Close)(hid_t)>
-class Handle {
- public:
-  Handle() = default;
-  explicit Handle(hid_t id) : id_(id) {}
-  Handle(Handle&& other) noexcept : id_(std::exchange(other.id_, H5I_INVALID_HID)) {}
-  Handle& operator=(Handle&& other) noexcept {
-    if (this != &other) {
-      close();
-      id_ = std::exchange(other.id_, H5I_INVALID_HID);
-    }
-    return *this;
-  }
-  Handle(const Handle&) = delete;
-  Handle& operator=(const Handle&) = delete;
-  ~Handle() { close(); }
-
-  hid_t get() const { return id_; }
-  herr_t close() { return id_ >= 0 ? Close(std::exchange(id_, H5I_INVALID_HID)) : 0; }
-
- private:
-  hid_t id_ = H5I_INVALID_HID;
-};
-
-using File = Handle<H5Fclose>;
-using Group = Handle<H5Gclose>;
-using Dataset = Handle<H5Dclose>;
-using Dataspace = Handle<H5Sclose>;
-using Datatype = Handle<H5Tclose>;
-using Attribute = Handle<H5Aclose>;
-using PropertyList = Handle<H5Pclose>;
-
-// --- Errors ------------------------------------------------------------------------------------
-
-// Why HDF5 failed, from its error stack: the OS error when a frame of the stack records one (its
-// file drivers write "errno = 28, error message = ..."), else the description where the failure was
-// first detected (the innermost frame). One line either way: HDF5's descriptions can hold a
-// newline (a ctime() timestamp), and a failure is reported in one.
-struct Reason {
-  std::string innermost;
-  int os_error = 0;
-};
-
-herr_t read_frame(unsigned depth, const H5E_error2_t* error, void* out) {
-  Reason& reason = *static_cast<Reason*>(out);
-  if (!error->desc) return 0;
-  const std::string desc = error->desc;
-  if (depth == 0) reason.innermost = desc;
-  const std::size_t at = desc.find("errno = ");
-  if (at != std::string::npos && reason.os_error == 0) reason.os_error = std::atoi(desc.c_str() + at + 8);
-  return 0;
-}
-
-[[noreturn]] void throw_hdf5_error(const std::string& what) {
-  Reason reason;
-  H5Ewalk2(H5E_DEFAULT, H5E_WALK_UPWARD, read_frame, &reason);
-  if (reason.os_error > 0) throw std::runtime_error(what + ": " + std::strerror(reason.os_error));
-  std::string detail = reason.innermost;
-  for (char& c : detail)
-    if (c == '\n' || c == '\r') c = ' ';
-  throw std::runtime_error(what + (detail.empty() ? "" : " (HDF5: " + detail + ")"));
-}
-
-// Every HDF5 call goes through one of these: a negative id or status becomes an exception that
-// names the file and the operation.
-struct Checker {
-  std::string file;
-
-  hid_t operator()(hid_t id, const std::string& operation) const {
-    if (id < 0) fail(operation);
-    return id;
-  }
-  void operator()(herr_t status, const std::string& operation) const {
-    if (status < 0) fail(operation);
-  }
-  [[noreturn]] void fail(const std::string& operation) const {
-    throw_hdf5_error("cannot " + operation + " in HDF5 file '" + file + "'");
-  }
-};
+using File = Hdf5Handle<H5Fclose>;
+using Group = Hdf5Handle<H5Gclose>;
+using Dataset = Hdf5Handle<H5Dclose>;
+using Dataspace = Hdf5Handle<H5Sclose>;
+using Datatype = Hdf5Handle<H5Tclose>;
+using Attribute = Hdf5Handle<H5Aclose>;
+using PropertyList = Hdf5Handle<H5Pclose>;
+using Checker = Hdf5Checker;
 
 // --- Types -------------------------------------------------------------------------------------
 
@@ -416,13 +341,7 @@ Hdf5FrameWriter::Hdf5FrameWriter(const std::string& path, const std::vector<Fiel
                                  int deflate_level, bool haptic_channel)
     : impl_(std::make_unique<Impl>()) {
   validate(fields, attributes, deflate_level);
-  // HDF5 1.10 can crash at exit closing a file whose last write failed; every file this writer
-  // opens is closed by it, so the library's exit handler has nothing to do. (This must come before
-  // the library's first call in the process to take effect.)
-  H5dont_atexit();
-  // Errors come back as exceptions carrying HDF5's message; its own printing to stderr would
-  // only repeat them (and scare users on errors the caller handles).
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  prepare_hdf5_for_writing();
 
   Impl& impl = *impl_;
   impl.final_path = path;

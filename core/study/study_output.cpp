@@ -2,13 +2,16 @@
 
 #include <hdf5.h>
 
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <functional>
 #include <stdexcept>
 
+#include "core/io/hdf5_handles.h"
 #include "core/runtime/message_text.h"
 
 namespace bleedsim {
@@ -38,14 +41,22 @@ void rename_into_place(const std::string& partial, const std::string& path) {
   if (error) throw std::runtime_error("cannot rename '" + partial + "' to '" + path + "': " + error.message());
 }
 
+// A file that failed part way is nobody's output: it goes, so no half-written file stays behind.
+void remove_partial(const std::string& partial) {
+  std::error_code ignored;  // the failure being reported matters more than this one
+  std::filesystem::remove(partial, ignored);
+}
+
 // Writes `path` through `write` into a temporary file, renamed into place once it is whole.
 void write_text_file(const std::string& path, const std::function<void(std::ostream&)>& write) {
   const std::string partial = path + ".partial";
-  {
-    std::ofstream out(partial);
-    if (!out) throw std::runtime_error("cannot write '" + partial + "'");
-    write(out);
-    if (!out.flush()) throw std::runtime_error("cannot write '" + partial + "'");
+  std::ofstream out(partial);
+  if (out) write(out);
+  if (out) out.close();
+  if (!out) {
+    const int reason = errno;  // the failed open, write or close's (EFBIG, ENOSPC)
+    remove_partial(partial);
+    throw std::runtime_error("cannot write '" + partial + "': " + std::strerror(reason));
   }
   rename_into_place(partial, path);
 }
@@ -62,57 +73,47 @@ std::string describe_value(const StudySetting& s) {
 
 // ---- HDF5 -------------------------------------------------------------------------------------
 
-// HDF5 handles closed on every path out, errors as exceptions naming the file; objects carry no
-// creation times, so the same data give the same bytes.
+using Group = Hdf5Handle<H5Gclose>;
+using PropertyList = Hdf5Handle<H5Pclose>;
+
+// HDF5 handles closed on every path out (a group left open keeps its file open, and HDF5 crashes at
+// exit on a file whose close failed), errors as exceptions naming the file and the OS error;
+// objects carry no creation times, so the same data give the same bytes.
 class H5 {
  public:
-  explicit H5(std::string file) : file_(std::move(file)) {
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-    dataset_create_ = check(H5Pcreate(H5P_DATASET_CREATE), "create a property list");
-    group_create_ = check(H5Pcreate(H5P_GROUP_CREATE), "create a property list");
-    H5Pset_obj_track_times(dataset_create_, 0);
-    H5Pset_obj_track_times(group_create_, 0);
+  explicit H5(std::string file) : check{std::move(file)} {
+    prepare_hdf5_for_writing();
+    dataset_create_ = untracked(H5P_DATASET_CREATE);
+    group_create_ = untracked(H5P_GROUP_CREATE);
   }
-  ~H5() {
-    H5Pclose(dataset_create_);
-    H5Pclose(group_create_);
-  }
-  H5(const H5&) = delete;
-  H5& operator=(const H5&) = delete;
 
-  hid_t check(hid_t id, const std::string& what) const {
-    if (id < 0) throw std::runtime_error("cannot " + what + " in HDF5 file '" + file_ + "'");
-    return id;
-  }
-  hid_t group(hid_t parent, const std::string& name) const {
-    return check(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, group_create_, H5P_DEFAULT), "create group " + name);
+  Group group(hid_t parent, const std::string& name) const {
+    return Group{check(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, group_create_.get(), H5P_DEFAULT),
+                       "create group " + name)};
   }
   void text(hid_t object, const std::string& name, const std::string& value) const {
-    const hid_t type = check(H5Tcopy(H5T_C_S1), "copy the string type");
-    H5Tset_size(type, H5T_VARIABLE);
-    H5Tset_cset(type, H5T_CSET_UTF8);
-    const hid_t space = check(H5Screate(H5S_SCALAR), "create a dataspace");
-    const hid_t attribute =
-        check(H5Acreate2(object, name.c_str(), type, space, H5P_DEFAULT, H5P_DEFAULT), "create attribute " + name);
+    const Hdf5Handle<H5Tclose> type{check(H5Tcopy(H5T_C_S1), "copy the string type")};
+    check(H5Tset_size(type.get(), H5T_VARIABLE), "size a string type");
+    check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "set a string character set");
+    const Hdf5Handle<H5Sclose> space{check(H5Screate(H5S_SCALAR), "create a dataspace")};
+    const Hdf5Handle<H5Aclose> attribute{
+        check(H5Acreate2(object, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
+              "create attribute " + name)};
     const char* chars = value.c_str();
-    const herr_t written = H5Awrite(attribute, type, &chars);
-    H5Aclose(attribute);
-    H5Sclose(space);
-    H5Tclose(type);
-    check(written, "write attribute " + name);
+    check(H5Awrite(attribute.get(), type.get(), &chars), "write attribute " + name);
   }
   // A dataset of doubles, rows × columns (columns 0: one dimension).
   void numbers(hid_t group, const std::string& name, const std::vector<double>& values, std::size_t columns = 0,
                const std::string& unit = "") const {
     const hsize_t dims[2] = {columns ? values.size() / columns : values.size(), columns};
-    const hid_t space = check(H5Screate_simple(columns ? 2 : 1, dims, nullptr), "create a dataspace");
-    const hid_t set = check(H5Dcreate2(group, name.c_str(), H5T_IEEE_F64LE, space, H5P_DEFAULT, dataset_create_, H5P_DEFAULT),
-                            "create dataset " + name);
-    const herr_t written = values.empty() ? 0 : H5Dwrite(set, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data());
-    if (!unit.empty()) text(set, "unit", unit);
-    H5Dclose(set);
-    H5Sclose(space);
-    check(written, "write dataset " + name);
+    const Hdf5Handle<H5Sclose> space{check(H5Screate_simple(columns ? 2 : 1, dims, nullptr), "create a dataspace")};
+    const Hdf5Handle<H5Dclose> set{check(H5Dcreate2(group, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT,
+                                                    dataset_create_.get(), H5P_DEFAULT),
+                                         "create dataset " + name)};
+    if (!values.empty())
+      check(H5Dwrite(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
+            "write dataset " + name);
+    if (!unit.empty()) text(set.get(), "unit", unit);
   }
   // Estimates as rows of (value, lo, hi).
   void estimates(hid_t group, const std::string& name, const std::vector<Estimate>& rows, const std::string& unit = "") const {
@@ -121,9 +122,16 @@ class H5 {
     numbers(group, name, values, 3, unit);
   }
 
+  const Hdf5Checker check;
+
  private:
-  std::string file_;
-  hid_t dataset_create_, group_create_;
+  PropertyList untracked(hid_t plist_class) const {
+    PropertyList plist{check(H5Pcreate(plist_class), "create a property list")};
+    check(H5Pset_obj_track_times(plist.get(), 0), "turn off object time tracking");
+    return plist;
+  }
+
+  PropertyList dataset_create_, group_create_;
 };
 
 std::string numbered(std::size_t i) {
@@ -171,15 +179,14 @@ void write_ladder(const H5& h5, hid_t group, const LadderResult& ladder, const K
   for (std::size_t m = 0; m < metrics().size(); ++m) {
     const LadderMetric& lm = ladder.per_metric[m];
     if (lm.level_values.empty()) continue;
-    const hid_t metric = h5.group(group, metrics()[m].name);
-    h5.estimates(metric, "level_values", lm.level_values, metrics()[m].unit);
-    h5.estimates(metric, "differences", rms_of(lm.fit.differences), metrics()[m].unit);
-    h5.estimates(metric, "orders", lm.fit.orders);
-    h5.text(metric, "statement", lm.fit.statement);
-    h5.numbers(metric, "asymptotic_from", {double(lm.fit.asymptotic_from)});
-    h5.estimates(metric, "extrapolated", {lm.extrapolated}, metrics()[m].unit);
-    h5.estimates(metric, "limit_distance", {lm.limit_distance}, metrics()[m].unit);
-    H5Gclose(metric);
+    const Group metric = h5.group(group, metrics()[m].name);
+    h5.estimates(metric.get(), "level_values", lm.level_values, metrics()[m].unit);
+    h5.estimates(metric.get(), "differences", rms_of(lm.fit.differences), metrics()[m].unit);
+    h5.estimates(metric.get(), "orders", lm.fit.orders);
+    h5.text(metric.get(), "statement", lm.fit.statement);
+    h5.numbers(metric.get(), "asymptotic_from", {double(lm.fit.asymptotic_from)});
+    h5.estimates(metric.get(), "extrapolated", {lm.extrapolated}, metrics()[m].unit);
+    h5.estimates(metric.get(), "limit_distance", {lm.limit_distance}, metrics()[m].unit);
   }
 }
 
@@ -245,7 +252,9 @@ void write_study_hdf5(const std::string& path, const Study& study, const StudyRe
                       const std::vector<std::pair<std::string, std::string>>& attributes) {
   const std::string partial = path + ".partial";
   const H5 h5(partial);
-  const hid_t file = h5.check(H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), "create the file");
+  Hdf5Handle<H5Fclose> handle{h5.check(H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), "create the file")};
+  const hid_t file = handle.get();
+  // Every object in the file is closed when this block ends, so the file really closes with it.
   try {
     for (const auto& [name, value] : attributes) h5.text(file, name, value);
     h5.text(file, "reference", study.reference_description());
@@ -261,53 +270,49 @@ void write_study_hdf5(const std::string& path, const Study& study, const StudyRe
     h5.numbers(file, "panel_mm", {study.scene().domain.width_mm, study.scene().domain.height_mm}, 0, "mm");
     h5.numbers(file, "snapshot_frames", snapshots);
 
-    const hid_t floor = h5.group(file, "noise_floor");
+    const Group floor = h5.group(file, "noise_floor");
     const RunDistances& d = result.noise_floor;
-    h5.estimates(floor, "between_seeds", {d.film_l1_mm, d.film_l2_mm, d.frame_psnr_db, d.stain_l1});
-    h5.text(floor, "between_seeds_rows", "film_l1_mm, film_l2_mm, frame_psnr_db, stain_l1");
+    h5.estimates(floor.get(), "between_seeds", {d.film_l1_mm, d.film_l2_mm, d.frame_psnr_db, d.stain_l1});
+    h5.text(floor.get(), "between_seeds_rows", "film_l1_mm, film_l2_mm, frame_psnr_db, stain_l1");
     for (std::size_t m = 0; m < metrics().size(); ++m)
       if (!std::isnan(result.seed_spread[m].value))
-        h5.estimates(floor, std::string(metrics()[m].name) + "_seed_spread", {result.seed_spread[m]}, metrics()[m].unit);
-    H5Gclose(floor);
+        h5.estimates(floor.get(), std::string(metrics()[m].name) + "_seed_spread", {result.seed_spread[m]}, metrics()[m].unit);
 
-    const hid_t settings = h5.group(file, "settings");
+    const Group settings = h5.group(file, "settings");
     for (std::size_t i = 0; i < result.settings.size(); ++i) {
-      const hid_t group = h5.group(settings, numbered(i));
-      write_setting(h5, group, result.settings[i]);
-      H5Gclose(group);
+      const Group group = h5.group(settings.get(), numbered(i));
+      write_setting(h5, group.get(), result.settings[i]);
     }
-    H5Gclose(settings);
 
-    const hid_t ladders = h5.group(file, "ladders");
+    const Group ladders = h5.group(file, "ladders");
     for (std::size_t l = 0; l < result.ladders.size(); ++l) {
-      const hid_t group = h5.group(ladders, result.ladders[l].knob);
-      write_ladder(h5, group, result.ladders[l], result.check.knobs[l]);
-      H5Gclose(group);
+      const Group group = h5.group(ladders.get(), result.ladders[l].knob);
+      write_ladder(h5, group.get(), result.ladders[l], result.check.knobs[l]);
     }
-    H5Gclose(ladders);
 
-    const hid_t timing = h5.group(file, "timing");
+    const Group timing = h5.group(file, "timing");
     for (std::size_t i = 0; i < result.settings.size(); ++i) {
-      const hid_t group = h5.group(timing, numbered(i));
+      const Group group = h5.group(timing.get(), numbered(i));
       for (const SettingTiming& t : result.settings[i].timing) {
         if (t.frame_seconds.empty()) continue;
-        const hid_t backend = h5.group(group, to_string(t.backend));
+        const Group backend = h5.group(group.get(), to_string(t.backend));
         std::vector<double> seconds;
         for (const std::vector<double>& seed : t.frame_seconds) seconds.insert(seconds.end(), seed.begin(), seed.end());
-        h5.numbers(backend, "frame_seconds", seconds, t.frame_seconds.front().size(), "s");
-        h5.text(backend, "device", t.device);
-        h5.numbers(backend, "ms_p50_p99_seedmin_seedmax", {t.ms_p50, t.ms_p99, t.ms_p50_low, t.ms_p50_high}, 0, "ms");
-        H5Gclose(backend);
+        h5.numbers(backend.get(), "frame_seconds", seconds, t.frame_seconds.front().size(), "s");
+        h5.text(backend.get(), "device", t.device);
+        h5.numbers(backend.get(), "ms_p50_p99_seedmin_seedmax", {t.ms_p50, t.ms_p99, t.ms_p50_low, t.ms_p50_high}, 0, "ms");
       }
-      H5Gclose(group);
     }
-    H5Gclose(timing);
   } catch (...) {
-    H5Fclose(file);
-    std::filesystem::remove(partial);
+    handle.close();
+    remove_partial(partial);
     throw;
   }
-  h5.check(H5Fclose(file), "close the file");
+  // HDF5 writes most of the file as it closes it: a full disk or a file size limit shows here.
+  if (handle.close() < 0) {
+    remove_partial(partial);
+    h5.check.fail("close the file");
+  }
   rename_into_place(partial, path);
 }
 

@@ -214,6 +214,30 @@ TEST(StudyMerge, RefusesShardsRunWithAnotherTraceMeshOrVesselMap) {
   }
 }
 
+// Issue 38, item 5: under `ulimit -f 40` a study (and a merge) said "cannot close the file in HDF5
+// file 'sf/study.h5.partial'" and then died of SIGSEGV in HDF5's exit handler (exit 139), leaving
+// study.h5.partial. Now: exit 1, one line naming the file and the OS error, no study.h5 of either
+// name.
+TEST(OutputSafety, AFileSizeLimitEndsAStudyWithAMessageNotACrash) {
+  const fs::path folder = scratch_folder();
+  tiny_scene(folder);
+  for (const int shard : {0, 1}) ASSERT_EQ(run_in(folder, shard_command("tiny.toml", "shards", shard)).exit_code, 0);
+  const std::string limit = "ulimit -f 40; ";
+  const CliResult study = run_shell(limit + "cd '" + folder.string() + "' && '" + cli_path() + "' " +
+                                    study_command("tiny.toml", "sf", "--knob blur_radius=1,2 --seeds 2 --no-plots --quiet"));
+  const CliResult merge = run_shell(limit + "cd '" + folder.string() + "' && '" + cli_path() + "' " +
+                                    merge_command("shards", "mf"));
+  for (const auto& [result, out] : {std::pair{study, "sf"}, std::pair{merge, "mf"}}) {
+    EXPECT_EQ(result.exit_code, 1) << out << ": " << result.output;
+    EXPECT_NE(result.output.find("bleedsim: failed: cannot close the file in HDF5 file '" + std::string(out) +
+                                 "/study.h5.partial': File too large"),
+              std::string::npos)
+        << out << ": " << result.output;
+    EXPECT_FALSE(fs::exists(folder / out / "study.h5")) << out;
+    EXPECT_FALSE(fs::exists(folder / out / "study.h5.partial")) << out << ": a half-written file left behind";
+  }
+}
+
 // Issue 38, item 18: a merge found the scenario by the path the shards were given, relative to the
 // folder they ran in: shards run in study/ with `--out ../sh` and merged from its parent failed with
 // "hs.toml: cannot read scenario file". A shard carries the scenario's text and its absolute path, so
