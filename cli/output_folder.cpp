@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <climits>
 #include <cstring>
 #include <string>
 #include <system_error>
@@ -26,11 +27,42 @@ std::string pid_in(int fd) {
   return pid;
 }
 
+// A limit of the file system that will hold `dir` (pathconf on its deepest folder that exists),
+// or the POSIX one where it reports none.
+long limit_for(const fs::path& dir, int name, long fallback) {
+  std::error_code ec;
+  fs::path existing = dir;
+  while (!existing.empty() && !fs::is_directory(existing, ec)) existing = existing.parent_path();
+  const long limit = pathconf(existing.empty() ? "." : existing.c_str(), name);
+  return limit > 0 ? limit : fallback;
+}
+
 }  // namespace
 
-OutputFolder::OutputFolder(const fs::path& dir, const SourcePlace& where, const std::string& key)
+void check_room_for_paths(const fs::path& dir, const std::string& longest_inside, const SourcePlace& where,
+                          const std::string& key) {
+  const long name_max = limit_for(dir, _PC_NAME_MAX, NAME_MAX);
+  for (const fs::path& part : dir)
+    if (long(part.string().size()) > name_max)
+      throw InputError(where, key, "the folder name '" + part.string().substr(0, 40) + "...' is " +
+                                       std::to_string(part.string().size()) + " characters long; a name may be at most " +
+                                       std::to_string(name_max) + " (NAME_MAX)");
+  // PATH_MAX counts the terminating NUL.
+  const long path_max = limit_for(dir, _PC_PATH_MAX, PATH_MAX);
+  const std::size_t longest = (dir / longest_inside).string().size();
+  if (long(longest) >= path_max)
+    throw InputError(where, key, "the output folder's path is " + std::to_string(dir.string().size()) +
+                                     " characters long; with the longest path written in it ('" + longest_inside +
+                                     "') it must be at most " +
+                                     std::to_string(path_max - 1 - long(longest - dir.string().size())) + " (PATH_MAX " +
+                                     std::to_string(path_max) + ")");
+}
+
+OutputFolder::OutputFolder(const fs::path& dir, const std::string& longest_inside, const SourcePlace& where,
+                           const std::string& key)
     : dir_(dir), where_(where), key_(key) {
   if (dir.empty()) throw error("the output folder must not be empty");
+  check_room_for_paths(dir, longest_inside, where, key);
   // A constructor that throws runs no destructor: what it made goes here.
   try {
     make(dir);

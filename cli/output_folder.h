@@ -17,8 +17,10 @@ class OutputFolder {
   // The lock file, beside the outputs; it holds the running command's pid.
   static constexpr const char* kLockName = ".bleedsim.lock";
 
-  // Throws InputError at `where`/`key` when the folder cannot be made or written, or is in use.
-  OutputFolder(const std::filesystem::path& dir, const SourcePlace& where, const std::string& key);
+  // Throws InputError at `where`/`key` when the folder cannot be made or written, or is in use, or
+  // its path leaves no room for `longest_inside` (see check_room_for_paths), before anything is made.
+  OutputFolder(const std::filesystem::path& dir, const std::string& longest_inside, const SourcePlace& where,
+               const std::string& key);
   // Releases the lock (and removes its file); removes the folders made, when not kept.
   ~OutputFolder();
   OutputFolder(const OutputFolder&) = delete;
@@ -41,5 +43,12 @@ class OutputFolder {
   std::vector<std::filesystem::path> created_;  // outermost first
   int lock_fd_ = -1;
 };
+
+// Refuses, with InputError at `where`/`key` naming the limit, an output folder whose path leaves no
+// room for `longest_inside`, the longest path (relative to the folder) the command makes in it:
+// the whole path must fit in PATH_MAX and each of the folder's names in NAME_MAX. Checked before
+// anything is made, so a run cannot fail half way with "File name too long" and strand its files.
+void check_room_for_paths(const std::filesystem::path& dir, const std::string& longest_inside, const SourcePlace& where,
+                          const std::string& key);
 
 }  // namespace bleedsim::cli

@@ -369,7 +369,7 @@ int run_command(const RunOptions& options) {
 
   // Everything about the input is checked; only now is anything made on disk: the folder, held by
   // this run alone, and in it the partial folder this run writes into (docs/reliability.md).
-  OutputFolder folder(scenario.output.dir, dir_place, dir_key);
+  OutputFolder folder(scenario.output.dir, RunFiles::longest_path(), dir_place, dir_key);
   RunFiles files(folder.path());
   folder.keep();
   ContactSheets sheets = contact_sheets(sim.scene(), scenario);

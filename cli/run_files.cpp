@@ -78,6 +78,22 @@ const std::vector<std::string>& RunFiles::names() {
   return names;
 }
 
+const std::string& RunFiles::longest_path() {
+  // A file in the partial folder under its temporary name (NAME.partial for frames.h5, NAME.tmp for
+  // a PNG: the longer is counted), or the last run's moved aside in a swap; in png/, a frame's PNG
+  // (png_name in cli/frame_output.cpp).
+  static const std::string longest = [] {
+    std::vector<std::string> names = RunFiles::names();
+    names.push_back("png/view_000000.png");
+    std::string longest;
+    for (const std::string& name : names)
+      for (const fs::path& path : {fs::path(kSwap) / ".replacing" / name, fs::path(kPartial) / (name + ".partial")})
+        if (path.string().size() > longest.size()) longest = path.string();
+    return longest;
+  }();
+  return longest;
+}
+
 RunFiles::RunFiles(const fs::path& folder) : folder_(folder) {
   if (present(folder / kSwap)) finish_swap(folder);
   const fs::path partial = folder / kPartial;

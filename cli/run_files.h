@@ -12,6 +12,8 @@ class RunFiles {
  public:
   // What a run writes, by name in the folder.
   static const std::vector<std::string>& names();
+  // The longest path, relative to the folder, a run makes in it (its folder must leave room for it).
+  static const std::string& longest_path();
   // Where the running (or a failed, or a killed) run's files are.
   static constexpr const char* kPartial = ".bleedsim-partial";
   // A swap under way: the run's files, then the last run's, moved aside.

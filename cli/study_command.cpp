@@ -5,6 +5,7 @@
 // the plots (scripts/plot-study) in the output folder (docs/accuracy.md).
 #include <unistd.h>
 
+#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
@@ -263,6 +264,18 @@ int analyse_and_write(const Study& study, const Scenario& scenario, const std::v
   return 0;
 }
 
+// The longest path a study makes in its folder: its files under their temporary names, a plot as
+// scripts/plot-study writes it (plots/.NAME.png.tmp, one per knob), or a shard as shard_file.cpp
+// writes it (NAME.partial-PID; 4194304 is the largest pid Linux gives).
+std::string longest_study_path(const Study& study, const std::optional<ShardId>& shard) {
+  if (shard) return shard_file_name(*shard) + ".partial-4194304";
+  std::vector<std::string> paths = {"study.csv.partial", "ladders.csv.partial", "jobs.csv.partial", "study.h5.partial",
+                                    "plots/.distributions.png.tmp", "plots/.pareto.png.tmp"};
+  for (const StudyLadder& ladder : study.ladders()) paths.push_back(std::string("plots/.") + ladder.knob->name + ".png.tmp");
+  return *std::max_element(paths.begin(), paths.end(),
+                           [](const std::string& a, const std::string& b) { return a.size() < b.size(); });
+}
+
 fs::path out_dir_for(const std::optional<std::string>& out_dir, const Scene& scene) {
   return out_dir ? fs::path(*out_dir) : fs::path("out/study") / scene.name;
 }
@@ -289,8 +302,12 @@ int study_command(const StudyOptions& options, const Ranks& ranks) {
   std::exception_ptr refused;
   if (ranks.is_root()) {
     try {
-      if (shard) fs::create_directories(dir);
-      else folder.emplace(dir, SourcePlace{}, "--out");
+      if (shard) {
+        check_room_for_paths(dir, longest_study_path(study, shard), SourcePlace{}, "--out");
+        fs::create_directories(dir);
+      } else {
+        folder.emplace(dir, longest_study_path(study, shard), SourcePlace{}, "--out");
+      }
     } catch (const fs::filesystem_error& e) {
       refused = std::make_exception_ptr(InputError({}, "--out", "cannot make " + dir.string() + ": " + e.code().message()));
     } catch (...) {
@@ -356,7 +373,8 @@ int study_merge_command(const StudyMergeOptions& options) {
     throw InputError({}, first,
                      "its study is not the one " + described.scenario_path + "'s text and this build make now (a "
                      "file it names or bleedsim changed since the shards were written)");
-  OutputFolder folder(out_dir_for(options.out_dir, study.scene()), SourcePlace{}, "--out");
+  OutputFolder folder(out_dir_for(options.out_dir, study.scene()), longest_study_path(study, std::nullopt), SourcePlace{},
+                      "--out");
   if (!options.quiet)
     std::printf("bleedsim study merge: %s: %zu shards, %zu jobs\n", study.scene().name.c_str(), merged.shard_count,
                 merged.results.size());

@@ -274,7 +274,35 @@ TEST_F(BadInput, UnwritableOutputPathFromTheScenario) {
 // it had made on the way.
 TEST_F(BadInput, AnOutputPathTooLongLeavesNoFolderItMadeBehind) {
   out_ = dir_ / "newparent" / std::string(300, 'b');
-  expect_refused(scenario_with("", ""), {"--out: cannot create output folder", "File name too long"});
+  expect_refused(scenario_with("", ""),
+                 {"--out: the folder name '" + std::string(40, 'b') + "...' is 300 characters long; a name may be "
+                  "at most 255 (NAME_MAX)"});
+  EXPECT_FALSE(fs::exists(dir_ / "newparent"));
+}
+
+// Issue 38, item 14: an --out of 4,056 characters passed the checks, then the run failed with "File
+// name too long" at view_contact_sheet.png, leaving 17 folders and a finished frames.h5 stranded in
+// .bleedsim-partial/. The path is checked against PATH_MAX with the longest path a run (or a study)
+// makes in the folder, before anything is made.
+TEST_F(BadInput, AnOutputPathWithNoRoomForTheFilesInItIsRefusedBeforeAnythingIsMade) {
+  // A folder path of `length` characters: names of 100 under newparent/, then one to make up the rest.
+  const auto deep_folder = [&](std::size_t length) {
+    fs::path path = dir_ / "newparent";
+    while (path.string().size() < length - 101) path /= std::string(100, 'd');
+    return path / std::string(length - path.string().size() - 1, 'e');
+  };
+  const auto refusal = [](std::size_t length) {
+    return "--out: the output folder's path is " + std::to_string(length) +
+           " characters long; with the longest path written in it";
+  };
+  out_ = deep_folder(4056);
+  ASSERT_EQ(out_.string().size(), 4056u);
+  expect_refused(scenario_with("", ""), {refusal(4056), "(PATH_MAX 4096)"}, "--contact-sheet 2");
+  // A study's longest path, plots/.distributions.png.tmp, is shorter than a run's.
+  out_ = deep_folder(4080);
+  expect_cli_refused("study '" + (dir_ / "bad.toml").string() + "' --backend cpu --knob resolution=0.5,1 --no-plots --out '" +
+                         out_.string() + "'",
+                     {refusal(4080), "(PATH_MAX 4096)"});
   EXPECT_FALSE(fs::exists(dir_ / "newparent"));
 }
 
