@@ -15,10 +15,10 @@
 
 #include "cli/commands.h"
 #include "cli/frame_output.h"
+#include "cli/output_files.h"
 #include "cli/output_folder.h"
 #include "cli/output_queue.h"
 #include "cli/progress.h"
-#include "cli/run_files.h"
 #include "core/io/contact_sheet.h"
 #include "core/io/hdf5_writer.h"
 #include "core/io/scenario.h"
@@ -114,7 +114,7 @@ std::size_t frames_in_flight(int workers, std::size_t frame_bytes) {
 
 // A failure while writing: the frames finished so far stay in the partial folder, and the last
 // whole run in the folder is untouched. One line, as every failure is.
-std::runtime_error write_failure(const std::exception& e, long frames_done, const RunFiles& files) {
+std::runtime_error write_failure(const std::exception& e, long frames_done, const OutputFiles& files) {
   const std::string kept = frames_done == 0 ? "no frame was finished"
                                             : std::to_string(frames_done) + " finished frame" +
                                                   (frames_done == 1 ? "" : "s") + " kept in " +
@@ -160,7 +160,7 @@ ContactSheets contact_sheets(const Scene& s, const Scenario& scenario) {
 
 // Where each frame goes: the HDF5 file (when there is one), the PNGs, the sheets and, for a scene
 // with a [view], the mesh drawn with the frame's texture from the scenario's endoscope.
-FrameOutputs frame_outputs(const Scene& s, const Scenario& scenario, const RunFiles& files, Hdf5FrameWriter* hdf5,
+FrameOutputs frame_outputs(const Scene& s, const Scenario& scenario, const OutputFiles& files, Hdf5FrameWriter* hdf5,
                            ContactSheets& sheets) {
   FrameOutputs outputs;
   outputs.hdf5 = hdf5;
@@ -290,7 +290,7 @@ void make_frames(Simulation& sim, const std::vector<FieldLayout>& specs, OutputQ
 
 // The run's files in the partial folder: the frames as they are made, into frames.h5 and the PNGs,
 // and then the contact sheets.
-RunTally write_run(const RunOptions& options, const Scenario& scenario, Simulation& sim, const RunFiles& files,
+RunTally write_run(const RunOptions& options, const Scenario& scenario, Simulation& sim, const OutputFiles& files,
                    ContactSheets& sheets, Progress& progress) {
   const Scene& s = sim.scene();
   const long frames = s.frame_count();
@@ -324,8 +324,27 @@ RunTally write_run(const RunOptions& options, const Scenario& scenario, Simulati
   return tally;
 }
 
+// What this run writes, by name in its folder (docs/output-format.md).
+std::vector<std::string> run_file_names(const RunOptions& options, const Scenario& scenario, const ContactSheets& sheets) {
+  std::vector<std::string> names;
+  if (options.hdf5) names.push_back("frames.h5");
+  if (scenario.output.png_every > 0) names.push_back("png");
+  if (sheets.panel) names.push_back("contact_sheet.png");
+  if (sheets.view) names.push_back("view_contact_sheet.png");
+  return names;
+}
+
+// The longest paths a run writes, as OutputFiles::longest_path takes them: a file under its
+// temporary name (NAME.partial for frames.h5, NAME.tmp for a PNG), a frame's PNG in png/ (png_name
+// in cli/frame_output.cpp).
+const std::string& longest_run_path() {
+  static const std::string longest = OutputFiles::longest_path(
+      {"frames.h5.partial", "png/view_000000.png.tmp", "contact_sheet.png.tmp", "view_contact_sheet.png.tmp"});
+  return longest;
+}
+
 // What the run wrote, where it is now that it is published.
-std::string files_written(const RunOptions& options, const RunFiles& files, const RunTally& tally,
+std::string files_written(const RunOptions& options, const OutputFiles& files, const RunTally& tally,
                           const ContactSheets& sheets) {
   std::string wrote = options.hdf5 ? files.published("frames.h5").string() : std::string("no HDF5");
   if (tally.pngs > 0) wrote += " and " + std::to_string(tally.pngs) + " PNGs in " + files.published("png").string();
@@ -369,10 +388,10 @@ int run_command(const RunOptions& options) {
 
   // Everything about the input is checked; only now is anything made on disk: the folder, held by
   // this run alone, and in it the partial folder this run writes into (docs/reliability.md).
-  OutputFolder folder(scenario.output.dir, RunFiles::longest_path(), dir_place, dir_key);
-  RunFiles files(folder.path());
-  folder.keep();
+  OutputFolder folder(scenario.output.dir, longest_run_path(), dir_place, dir_key);
   ContactSheets sheets = contact_sheets(sim.scene(), scenario);
+  OutputFiles files(folder, run_file_names(options, scenario, sheets));
+  folder.keep();
   if (!options.quiet) announce(sim);
   std::fflush(stdout);
 

@@ -4,7 +4,9 @@
 // read back by h5py, an independent reader.
 #include <unistd.h>
 
+#include <csignal>
 #include <filesystem>
+#include <map>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -85,7 +87,8 @@ TEST(OutputSafety, ASecondRunIntoABusyFolderIsRefusedAndTheFirstEndsWhole) {
   EXPECT_EQ(read.frames_written, 150);
   EXPECT_EQ(read.frames_stored, 150);
   EXPECT_EQ(read.scene, "first");
-  EXPECT_EQ(entries(out), std::vector<std::string>({"frames.h5"})) << "no lock, partial or swap folder left";
+  EXPECT_EQ(entries(out), std::vector<std::string>({".bleedsim-manifest", "frames.h5"}))
+      << "no lock, partial or swap folder left";
 }
 
 // Item 6. A run that writes no PNGs left the previous run's PNGs and contact sheet beside its own
@@ -94,11 +97,11 @@ TEST(OutputSafety, TheFolderShowsOneWholeRunNeverAMix) {
   const fs::path dir = scratch_folder(), out = dir / "out";
   const fs::path with_pngs = write_scene(dir, "with-pngs", 12), without = write_scene(dir, "without", 9);
   ASSERT_EQ(run_shell(run_into(with_pngs, out, "--png-every 4 --contact-sheet 3")).exit_code, 0);
-  EXPECT_EQ(entries(out), std::vector<std::string>({"contact_sheet.png", "frames.h5", "png"}));
+  EXPECT_EQ(entries(out), std::vector<std::string>({".bleedsim-manifest", "contact_sheet.png", "frames.h5", "png"}));
 
   const CliResult second = run_shell(run_into(without, out));
   ASSERT_EQ(second.exit_code, 0) << second.output;
-  EXPECT_EQ(entries(out), std::vector<std::string>({"frames.h5"})) << "the first run's PNGs outlived it";
+  EXPECT_EQ(entries(out), std::vector<std::string>({".bleedsim-manifest", "frames.h5"})) << "the first run's PNGs outlived it";
   EXPECT_EQ(read_with_h5py(out / "frames.h5").scene, "without");
 
   // A run that fails (its file may not grow past 300 KB) leaves the last whole run as it was.
@@ -106,7 +109,7 @@ TEST(OutputSafety, TheFolderShowsOneWholeRunNeverAMix) {
   const CliResult failed = run_shell("ulimit -f 300; " + run_into(with_pngs, out, "--png-every 1 --contact-sheet 3"));
   EXPECT_EQ(failed.exit_code, 1) << failed.output;
   EXPECT_EQ(read_bytes(out / "frames.h5"), before);
-  EXPECT_EQ(entries(out), std::vector<std::string>({".bleedsim-partial", "frames.h5"}));
+  EXPECT_EQ(entries(out), std::vector<std::string>({".bleedsim-manifest", ".bleedsim-partial", "frames.h5"}));
 }
 
 // Item 4. Under `ulimit -f` the run died of SIGXFSZ without a word (exit 153). A write failure ends
@@ -135,16 +138,21 @@ TEST(OutputSafety, AFileSizeLimitEndsTheRunInOneLineKeepingItsFrames) {
       << result.output;
 }
 
-// A small file system of its own (tmpfs in a user and mount namespace, no privileges needed) to
-// fill: `script` (written to `dir`) runs in it, as its working folder. Skips where the kernel
-// allows no user namespaces.
-CliResult on_a_small_disk(const fs::path& dir, const std::string& size, const std::string& script) {
-  write_text(dir / "on-small-disk.sh", "set -u\nT=$(mktemp -d)\nmount -t tmpfs -o size=" + size +
-                                           " none \"$T\" || exit 90\ncd \"$T\"\n" + script);
-  return run_shell("unshare --user --map-root-user --mount sh " + quoted(dir / "on-small-disk.sh"));
+// `script` (written to `dir`) run by sh in a user and mount namespace of its own, where it may mount
+// (no privileges needed).
+CliResult in_a_mount_namespace(const fs::path& dir, const std::string& script) {
+  write_text(dir / "in-namespace.sh", "set -u\n" + script);
+  return run_shell("unshare --user --map-root-user --mount sh " + quoted(dir / "in-namespace.sh"));
 }
 
-bool small_disks_available() {
+// A small file system of its own (tmpfs) to fill: `script` runs in it, as its working folder.
+CliResult on_a_small_disk(const fs::path& dir, const std::string& size, const std::string& script) {
+  return in_a_mount_namespace(dir, "T=$(mktemp -d)\nmount -t tmpfs -o size=" + size + " none \"$T\" || exit 90\ncd \"$T\"\n" +
+                                       script);
+}
+
+// Whether the kernel allows user namespaces, in which a test may mount.
+bool mount_namespaces_available() {
   return run_shell("unshare --user --map-root-user --mount sh -c 'mount -t tmpfs none \"$(mktemp -d)\"'").exit_code == 0;
 }
 
@@ -152,7 +160,7 @@ bool small_disks_available() {
 // frames.h5.partial; full mid-run, the message came on two lines with "bytes actually written =
 // 18446744073709551615". Now: exit 1, one line with the OS error, the last whole run untouched.
 TEST(OutputSafety, AFullDiskEndsTheRunInOneLineLeavingTheLastRunWhole) {
-  if (!small_disks_available()) GTEST_SKIP() << "no user namespaces here: cannot make a small file system to fill";
+  if (!mount_namespaces_available()) GTEST_SKIP() << "no user namespaces here: cannot make a small file system to fill";
   const fs::path dir = scratch_folder();
   const fs::path scene = write_scene(dir, "filling", 60), small = write_scene(dir, "small", 3);
   const std::string cli = "'" + cli_path() + "' ";
@@ -211,21 +219,158 @@ TEST(OutputSafety, AKilledRunLeavesTheLastRunWholeAndItsOwnFramesReadable) {
   EXPECT_GE(read.frames_written, 1);
 }
 
-// A run killed in the middle of its swap leaves .bleedsim-swap; the next run in the folder
-// completes that swap before anything else, so the folder shows the killed run's files, whole, even
-// when the next run then fails.
-TEST(OutputSafety, AHalfDoneSwapIsCompletedByTheNextRun) {
-  const fs::path dir = scratch_folder(), out = dir / "out", other = dir / "other";
-  ASSERT_EQ(run_shell(run_into(write_scene(dir, "older", 3), out, "--png-every 1")).exit_code, 0);
-  ASSERT_EQ(run_shell(run_into(write_scene(dir, "swapped", 4), other)).exit_code, 0);
-  // The state a kill leaves just after the commit: the new run's files in the swap folder, the
-  // older run's where they were.
+// The base scene of issue 38: 32 x 24 px, 0.2 s (6 frames), the spread and particles; quick enough
+// to run a few hundred times.
+fs::path write_small_scene(const fs::path& dir, const std::string& name) {
+  const fs::path file = dir / (name + ".toml");
+  write_text(file, "[scene]\nname = \"" + name + "\"\nwidth_px = 32\nheight_px = 24\nwidth_mm = 16\nheight_mm = 12\n"
+                   "duration_s = 0.2\n[spread]\n[particles]\ncapacity = 1024\ndesign_depth_mm = 1\n"
+                   "[[cut]]\nx_mm = 8\ny_mm = 6\n[output]\npng_every = 2\ncontact_sheet = 4\n");
+  return file;
+}
+
+// What a user sees in a folder: every file in it, by its path inside, with its bytes; bleedsim's own
+// entries (.bleedsim-*, the lock, the manifest) aside.
+std::map<std::string, std::string> visible_files(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  for (auto it = fs::recursive_directory_iterator(dir); it != fs::recursive_directory_iterator(); ++it) {
+    if (it->path().filename().string().rfind(".bleedsim", 0) == 0) {
+      if (it->is_directory()) it.disable_recursion_pending();
+      continue;
+    }
+    if (it->is_regular_file()) files[fs::relative(it->path(), dir).string()] = read_bytes(it->path());
+  }
+  return files;
+}
+
+std::string names_of(const std::map<std::string, std::string>& files) {
+  std::string names;
+  for (const auto& [name, bytes] : files) names += name + " ";
+  return names;
+}
+
+void copy_folder(const fs::path& from, const fs::path& to) {
+  fs::remove_all(to);
+  fs::copy(from, to, fs::copy_options::recursive);
+}
+
+// Issue 38, item 1. A kill just before the swap folder was removed left it empty; the next run's
+// recovery took the folder's files, the swapped-in run's, for the last run's and deleted them. The
+// swap is journaled: a run killed (BLEEDSIM_TEST_KILL_AT=N, docs/reliability.md) before any one of
+// its steps, and then one killed before any one step of the recovery, leave the folder, once a
+// later run has recovered it, with the older run whole or the newer run whole, and the user's file.
+TEST(OutputSafety, AKillAtAnyStepOfTheSwapLeavesOneWholeRun) {
+  const fs::path dir = scratch_folder(), out = dir / "out", killed_state = dir / "killed";
+  const fs::path older = write_small_scene(dir, "older"), newer = write_small_scene(dir, "newer");
+  // The two runs as they look whole, each with a file of the user's beside it.
+  ASSERT_EQ(run_shell(run_into(older, dir / "old")).exit_code, 0);
+  ASSERT_EQ(run_shell(run_into(newer, dir / "new", "--png-every 3 --contact-sheet 0")).exit_code, 0);
+  for (const char* run : {"old", "new"}) write_text(dir / run / "notes.txt", "the user's own");
+  const std::map<std::string, std::string> old_run = visible_files(dir / "old"), new_run = visible_files(dir / "new");
+  ASSERT_NE(old_run, new_run);
+  const auto kill_at = [](int step) { return "BLEEDSIM_TEST_KILL_AT=" + std::to_string(step) + " "; };
+  // A run that recovers the folder and then fails before its first frame is written.
+  const auto recovering = [&](const std::string& environment) { return "ulimit -f 1; " + environment + run_into(older, out); };
+  const auto expect_one_whole_run = [&](const std::string& when) {
+    const std::map<std::string, std::string> now = visible_files(out);
+    EXPECT_TRUE(now == old_run || now == new_run) << when << ": the folder holds " << names_of(now);
+  };
+
+  // The issue's reproducer: the state a kill before the last step of the old swap left.
+  copy_folder(dir / "new", out);
   fs::create_directory(out / ".bleedsim-swap");
-  fs::copy_file(other / "frames.h5", out / ".bleedsim-swap" / "frames.h5");
-  const CliResult failed = run_shell("ulimit -f 100; " + run_into(write_scene(dir, "failing", 30), out));
-  EXPECT_EQ(failed.exit_code, 1) << failed.output;
-  EXPECT_EQ(read_bytes(out / "frames.h5"), read_bytes(other / "frames.h5"));
-  EXPECT_EQ(entries(out), std::vector<std::string>({".bleedsim-partial", "frames.h5"})) << "the older run's PNGs stayed";
+  const CliResult after_empty_swap = run_shell(recovering(""));
+  EXPECT_EQ(after_empty_swap.exit_code, 1) << after_empty_swap.output;
+  EXPECT_TRUE(visible_files(out) == new_run) << "after an empty swap folder, the folder holds " << names_of(visible_files(out))
+                                            << ": " << after_empty_swap.output;
+
+  int commit_steps = 0;
+  for (int step = 1; step < 100; ++step) {
+    copy_folder(dir / "old", out);
+    const CliResult killed = run_shell(kill_at(step) + run_into(newer, out, "--png-every 3 --contact-sheet 0"));
+    if (killed.exit_code == 0) {
+      EXPECT_TRUE(visible_files(out) == new_run) << "the run not killed: " << names_of(visible_files(out));
+      break;
+    }
+    ASSERT_EQ(killed.exit_code, 128 + SIGKILL) << "step " << step << ": " << killed.output;
+    commit_steps = step;
+    copy_folder(out, killed_state);
+    for (int recovery_step = 1; recovery_step < 100; ++recovery_step) {
+      copy_folder(killed_state, out);
+      const std::string when = "killed at step " + std::to_string(step) + " of the swap, then at step " +
+                               std::to_string(recovery_step) + " of the recovery";
+      const CliResult recovery = run_shell(recovering(kill_at(recovery_step)));
+      if (recovery.exit_code != 128 + SIGKILL) {
+        EXPECT_EQ(recovery.exit_code, 1) << when << ": " << recovery.output;
+        expect_one_whole_run("killed at step " + std::to_string(step) + " of the swap, then recovered");
+        break;
+      }
+      const CliResult recovered = run_shell(recovering(""));
+      EXPECT_EQ(recovered.exit_code, 1) << when << ": " << recovered.output;
+      expect_one_whole_run(when);
+    }
+  }
+  EXPECT_GE(commit_steps, 8) << "the swap's steps were not reached: is BLEEDSIM_TEST_KILL_AT read?";
+}
+
+// Issue 38, item 2. `--out` into a folder of the user's moved every name a run may write (png/,
+// frames.h5, contact_sheet.png) aside and deleted it, whoever wrote it. Only what the folder's last
+// run wrote, as its manifest lists, is replaced; a file of the user's that a run would write over is
+// refused, before anything is written.
+TEST(OutputSafety, ARunReplacesOnlyWhatTheLastRunWroteNeverAUsersFile) {
+  const fs::path dir = scratch_folder(), project = dir / "proj", mine = dir / "mine";
+  const fs::path scene = write_small_scene(dir, "base");
+  fs::create_directories(project / "png");
+  write_text(project / "png" / "fig1.png", "fig");
+  for (int run = 1; run <= 2; ++run) {
+    const CliResult result = run_shell("cd " + quoted(project) + " && '" + cli_path() + "' run " + quoted(scene) +
+                                       " --backend cpu -q --out . --png-every 0");
+    EXPECT_EQ(result.exit_code, 0) << "run " << run << ": " << result.output;
+    EXPECT_EQ(read_bytes(project / "png" / "fig1.png"), "fig") << "run " << run << " deleted the user's png/";
+    EXPECT_TRUE(fs::exists(project / "frames.h5")) << "run " << run;
+  }
+
+  fs::create_directories(mine);
+  write_text(mine / "frames.h5", "my own data");
+  write_text(mine / "contact_sheet.png", "my own sheet");
+  const CliResult refused = run_shell(run_into(scene, mine));
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_NE(refused.output.find("bleedsim: error: --out: '" + (mine / "frames.h5").string() +
+                                "' was not written by a bleedsim run in this folder"),
+            std::string::npos)
+      << refused.output;
+  EXPECT_TRUE(read_bytes(mine / "frames.h5") == "my own data") << "the user's frames.h5 was replaced";
+  EXPECT_TRUE(read_bytes(mine / "contact_sheet.png") == "my own sheet") << "the user's contact_sheet.png was replaced";
+  EXPECT_EQ(entries(mine), std::vector<std::string>({"contact_sheet.png", "frames.h5"})) << "nothing written";
+}
+
+// Issue 38, item 3. A swap that failed half way (a folder it must move cannot be moved) left the
+// last run's frames.h5 moved aside beside its png/: a mix, with no rollback, and every rerun failed
+// the same way. A failed swap is rolled back: the folder shows the last run as it was, the new run's
+// files stay in the partial folder, and the message names the file and the OS error. (The failure:
+// png/ is a mount point, which rename(2) refuses with EBUSY, for root too.)
+TEST(OutputSafety, ASwapThatFailsHalfWayIsRolledBack) {
+  if (!mount_namespaces_available()) GTEST_SKIP() << "no user namespaces here: cannot make a folder that cannot be moved";
+  const fs::path dir = scratch_folder();
+  const fs::path scene = write_small_scene(dir, "base");
+  const std::string run = "'" + cli_path() + "' run " + quoted(scene) + " --backend cpu -q --out own";
+  const CliResult result = in_a_mount_namespace(
+      dir, "cd " + quoted(dir) + "\n" + run + "; echo first=$?\ncp -a own saved\n"
+           "mount --bind own/png own/png || exit 90\n" +
+           run + " --png-every 3; echo second=$?\n"
+           "diff -r --exclude='.bleedsim*' own saved && echo unchanged\n"
+           "umount own/png\n" + run + " --png-every 3; echo third=$?\nls own/png\n");
+  const std::string& o = result.output;
+  EXPECT_NE(o.find("first=0"), std::string::npos) << o;
+  EXPECT_NE(o.find("second=1"), std::string::npos) << o;
+  EXPECT_NE(o.find("bleedsim: failed: cannot move 'own/png': Device or resource busy (to 'own/.bleedsim-swap/.old/png'); "
+                   "the swap was rolled back: the folder's last whole run is as it was, the new files are in "
+                   "own/.bleedsim-partial\n"),
+            std::string::npos)
+      << o;
+  EXPECT_NE(o.find("unchanged"), std::string::npos) << "the folder is not the last run as it was: " << o;
+  EXPECT_NE(o.find("third=0"), std::string::npos) << o;
+  EXPECT_NE(o.find("frame_000003.png"), std::string::npos) << "the third run's PNGs are not in png/: " << o;
 }
 
 }  // namespace

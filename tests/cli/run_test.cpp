@@ -57,7 +57,7 @@ TEST(Run, WritesHdf5AndPngsAndSaysWhere) {
   EXPECT_NE(result.output.find("45 frames in"), std::string::npos) << result.output;
   EXPECT_NE(result.output.find((out / "frames.h5").string()), std::string::npos) << result.output;
   EXPECT_NE(result.output.find("6 PNGs in"), std::string::npos) << result.output;
-  EXPECT_EQ(files_in(out), std::vector<std::string>({"frames.h5", "png"}));
+  EXPECT_EQ(files_in(out), std::vector<std::string>({".bleedsim-manifest", "frames.h5", "png"}));
   EXPECT_EQ(files_in(out / "png"),
             std::vector<std::string>({"frame_000000.png", "frame_000010.png", "frame_000020.png",
                                       "frame_000030.png", "frame_000040.png", "frame_000044.png"}));
@@ -183,7 +183,8 @@ TEST(Run, AnInterruptedRunKeepsEveryFrameItFinished) {
   EXPECT_NE(result.output.find("exit=130"), std::string::npos) << result.output;
   EXPECT_NE(result.output.find("interrupted after"), std::string::npos) << result.output;
   ASSERT_TRUE(fs::exists(out / "frames.h5")) << result.output;
-  EXPECT_EQ(files_in(out), std::vector<std::string>({"frames.h5"})) << "an interrupted run is whole, and swapped in";
+  EXPECT_EQ(files_in(out), std::vector<std::string>({".bleedsim-manifest", "frames.h5"}))
+      << "an interrupted run is whole, and swapped in";
   EXPECT_EQ(int_attribute(out / "frames.h5", "complete"), 0);
   const long long written = int_attribute(out / "frames.h5", "frames_written");
   EXPECT_GE(written, 1);
