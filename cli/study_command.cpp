@@ -6,15 +6,18 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include "cli/commands.h"
+#include "cli/output_files.h"
 #include "cli/output_folder.h"
 #include "cli/progress.h"
 #include "core/runtime/build_info.h"
@@ -197,7 +200,7 @@ std::vector<double> job_costs(const Study& study) {
 void write_jobs_csv(const fs::path& path, const Study& study, const std::vector<JobResult>& results) {
   const fs::path partial = path.string() + ".partial";
   FILE* f = std::fopen(partial.c_str(), "w");
-  if (!f) throw std::runtime_error("cannot write " + partial.string());
+  if (!f) throw std::runtime_error("cannot write '" + partial.string() + "': " + std::strerror(errno));
   std::fprintf(f, "job,knob,value,role,seed,backend,rank,host,cuda_device,seconds\n");
   for (const JobResult& r : results) {
     const Study::Job job = study.job(r.job);
@@ -207,7 +210,12 @@ void write_jobs_csv(const fs::path& path, const Study& study, const std::vector<
                  r.origin.rank, r.origin.host.c_str(), r.origin.cuda_device, r.origin.seconds);
   }
   const bool written = std::fflush(f) == 0 && std::ferror(f) == 0;
-  if (std::fclose(f) != 0 || !written) throw std::runtime_error("cannot write " + partial.string());
+  const int reason = errno;  // the failed write's (EFBIG, ENOSPC), or the close's
+  if (std::fclose(f) != 0 || !written) {
+    std::error_code ignored;  // the failure being reported matters more than this one
+    fs::remove(partial, ignored);
+    throw std::runtime_error("cannot write '" + partial.string() + "': " + std::strerror(written ? errno : reason));
+  }
   fs::rename(partial, path);
 }
 
@@ -237,43 +245,50 @@ void print_ranks(const std::vector<JobResult>& results) {
   }
 }
 
-// The analysis of every job's record, in job order, and the files and plots from it.
+// What a study writes, by name in its folder: its files and the plots drawn from them.
+const std::vector<std::string>& study_file_names() {
+  static const std::vector<std::string> names = {"study.csv", "ladders.csv", "jobs.csv", "study.h5", "plots"};
+  return names;
+}
+
+// The analysis of every job's record, in job order, and the files and plots from it, written into
+// the partial folder and swapped in together.
 int analyse_and_write(const Study& study, const Scenario& scenario, const std::vector<JobResult>& results,
-                      OutputFolder& folder, bool plots, bool quiet) {
+                      OutputFiles& files, bool plots, bool quiet) {
   std::vector<std::vector<std::uint8_t>> records;
   records.reserve(results.size());
   for (const JobResult& r : results) records.push_back(r.record);
   const StudyResult result = analyse(study, records);
   const Scene& scene = study.scene();
-  write_study_files(folder.path().string(), study, result,
+  write_study_files(files.partial("").string(), study, result,
                     {{"bleedsim_version", version()}, {"git_sha", git_sha()}, {"build_flags", build_flags()},
                      {"scene_name", scene.name}, {"scenario_path", scenario.path}, {"scenario_text", scenario.text}});
-  write_jobs_csv(folder.path() / "jobs.csv", study, results);
-  folder.keep();
+  write_jobs_csv(files.partial("jobs.csv"), study, results);
+  const bool plotted = plots && std::system(plot_command(files.partial("")).c_str()) == 0;
+  files.publish();
   if (!quiet) {
     print_results(study, result);
     print_ranks(results);
   }
-  std::printf("bleedsim study: wrote %s, %s, %s and %s\n", (folder.path() / "study.csv").string().c_str(),
-              (folder.path() / "ladders.csv").string().c_str(), (folder.path() / "jobs.csv").string().c_str(),
-              (folder.path() / "study.h5").string().c_str());
-  if (plots && std::system(plot_command(folder.path()).c_str()) != 0)
+  std::printf("bleedsim study: wrote %s, %s, %s and %s\n", files.published("study.csv").string().c_str(),
+              files.published("ladders.csv").string().c_str(), files.published("jobs.csv").string().c_str(),
+              files.published("study.h5").string().c_str());
+  if (plots && !plotted)
     std::fprintf(stderr, "bleedsim study: plots not drawn (they need Debian's python3-matplotlib and python3-h5py); "
                          "draw them where they are installed with: scripts/plot-study %s\n",
-                 folder.path().string().c_str());
+                 files.published("").string().c_str());
   return 0;
 }
 
-// The longest path a study makes in its folder: its files under their temporary names, a plot as
-// scripts/plot-study writes it (plots/.NAME.png.tmp, one per knob), or a shard as shard_file.cpp
-// writes it (NAME.partial-PID; 4194304 is the largest pid Linux gives).
+// The longest path a study makes in its folder: in the partial folder, its files under their
+// temporary names or a plot as scripts/plot-study writes it (plots/.NAME.png.tmp, one per knob);
+// or a shard as shard_file.cpp writes it (NAME.partial-PID; 4194304 is the largest pid Linux gives).
 std::string longest_study_path(const Study& study, const std::optional<ShardId>& shard) {
   if (shard) return shard_file_name(*shard) + ".partial-4194304";
   std::vector<std::string> paths = {"study.csv.partial", "ladders.csv.partial", "jobs.csv.partial", "study.h5.partial",
                                     "plots/.distributions.png.tmp", "plots/.pareto.png.tmp"};
   for (const StudyLadder& ladder : study.ladders()) paths.push_back(std::string("plots/.") + ladder.knob->name + ".png.tmp");
-  return *std::max_element(paths.begin(), paths.end(),
-                           [](const std::string& a, const std::string& b) { return a.size() < b.size(); });
+  return OutputFiles::longest_path(paths);
 }
 
 fs::path out_dir_for(const std::optional<std::string>& out_dir, const Scene& scene) {
@@ -299,6 +314,7 @@ int study_command(const StudyOptions& options, const Ranks& ranks) {
   // Rank 0 alone takes the output folder (a shard's shares its folder with the other shards' files,
   // written whole under their own names); every rank hears whether it could.
   std::optional<OutputFolder> folder;
+  std::optional<OutputFiles> files;
   std::exception_ptr refused;
   if (ranks.is_root()) {
     try {
@@ -307,6 +323,8 @@ int study_command(const StudyOptions& options, const Ranks& ranks) {
         fs::create_directories(dir);
       } else {
         folder.emplace(dir, longest_study_path(study, shard), SourcePlace{}, "--out");
+        files.emplace(*folder, study_file_names());
+        folder->keep();
       }
     } catch (const fs::filesystem_error& e) {
       refused = std::make_exception_ptr(InputError({}, "--out", "cannot make " + dir.string() + ": " + e.code().message()));
@@ -357,7 +375,7 @@ int study_command(const StudyOptions& options, const Ranks& ranks) {
                 path.string().c_str(), results.size(), costs.size(), shard->count);
     return 0;
   }
-  return analyse_and_write(study, scenario, results, *folder, options.plots, options.quiet);
+  return analyse_and_write(study, scenario, results, *files, options.plots, options.quiet);
 }
 
 int study_merge_command(const StudyMergeOptions& options) {
@@ -375,10 +393,12 @@ int study_merge_command(const StudyMergeOptions& options) {
                      "file it names or bleedsim changed since the shards were written)");
   OutputFolder folder(out_dir_for(options.out_dir, study.scene()), longest_study_path(study, std::nullopt), SourcePlace{},
                       "--out");
+  OutputFiles files(folder, study_file_names());
+  folder.keep();
   if (!options.quiet)
     std::printf("bleedsim study merge: %s: %zu shards, %zu jobs\n", study.scene().name.c_str(), merged.shard_count,
                 merged.results.size());
-  return analyse_and_write(study, scenario, merged.results, folder, options.plots, options.quiet);
+  return analyse_and_write(study, scenario, merged.results, files, options.plots, options.quiet);
 }
 
 }  // namespace bleedsim::cli

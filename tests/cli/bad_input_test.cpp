@@ -298,7 +298,8 @@ TEST_F(BadInput, AnOutputPathWithNoRoomForTheFilesInItIsRefusedBeforeAnythingIsM
   out_ = deep_folder(4056);
   ASSERT_EQ(out_.string().size(), 4056u);
   expect_refused(scenario_with("", ""), {refusal(4056), "(PATH_MAX 4096)"}, "--contact-sheet 2");
-  // A study's longest path, plots/.distributions.png.tmp, is shorter than a run's.
+  // A study's longest path, .bleedsim-partial/plots/.distributions.png.tmp, is 2 characters longer
+  // than a run's.
   out_ = deep_folder(4080);
   expect_cli_refused("study '" + (dir_ / "bad.toml").string() + "' --backend cpu --knob resolution=0.5,1 --no-plots --out '" +
                          out_.string() + "'",

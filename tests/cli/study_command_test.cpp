@@ -230,12 +230,33 @@ TEST(OutputSafety, AFileSizeLimitEndsAStudyWithAMessageNotACrash) {
   for (const auto& [result, out] : {std::pair{study, "sf"}, std::pair{merge, "mf"}}) {
     EXPECT_EQ(result.exit_code, 1) << out << ": " << result.output;
     EXPECT_NE(result.output.find("bleedsim: failed: cannot close the file in HDF5 file '" + std::string(out) +
-                                 "/study.h5.partial': File too large"),
+                                 "/.bleedsim-partial/study.h5.partial': File too large"),
               std::string::npos)
         << out << ": " << result.output;
     EXPECT_FALSE(fs::exists(folder / out / "study.h5")) << out;
-    EXPECT_FALSE(fs::exists(folder / out / "study.h5.partial")) << out << ": a half-written file left behind";
+    EXPECT_FALSE(fs::exists(folder / out / ".bleedsim-partial" / "study.h5.partial"))
+        << out << ": a half-written file left behind";
   }
+}
+
+// Issue 38, item 4. Under a file size limit (4 KiB: 8 of sh's blocks) the new study.csv was renamed
+// in, ladders.csv failed and the last study's other files stayed: two studies mixed. A study's files
+// are written into the partial folder and swapped in together, as a run's.
+TEST(OutputSafety, AStudyWhoseWriteFailsLeavesTheLastStudyWhole) {
+  const fs::path folder = scratch_folder();
+  tiny_scene(folder);
+  const std::string study = study_command("tiny.toml", "sf", "--knob blur_radius=1,2 --seeds 2 --no-plots --quiet");
+  ASSERT_EQ(run_in(folder, study).exit_code, 0);
+  const std::vector<std::string> files = {"jobs.csv", "ladders.csv", "study.csv", "study.h5"};
+  std::map<std::string, std::string> last;
+  for (const std::string& file : files) last[file] = read_bytes(folder / "sf" / file);
+  const CliResult failed = run_shell("ulimit -f 8; cd '" + folder.string() + "' && '" + cli_path() + "' " + study);
+  EXPECT_EQ(failed.exit_code, 1) << failed.output;
+  EXPECT_EQ(failed.output, "bleedsim: failed: cannot write 'sf/.bleedsim-partial/ladders.csv.partial': File too large\n");
+  // The new study.csv differs from the last in its timings.
+  for (const std::string& file : files)
+    EXPECT_TRUE(read_bytes(folder / "sf" / file) == last[file]) << file << " is not the last study's";
+  EXPECT_FALSE(fs::exists(folder / "sf" / "ladders.csv.partial")) << "a half-written file beside the last study's";
 }
 
 // Issue 38, item 18: a merge found the scenario by the path the shards were given, relative to the
