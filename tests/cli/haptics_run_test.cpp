@@ -14,6 +14,7 @@ namespace {
 namespace fs = std::filesystem;
 
 TEST(RunHaptics, WritesTheHapticChannelAndReportsTheBudgets) {
+  BLEEDSIM_SKIP_UNLESS_H5PY();
   // The example stroke (scenarios/traces/single-stroke.csv) over a small panel for 4.2 s.
   const fs::path folder = scratch_folder();
   const std::string trace = source_dir() + "/scenarios/traces/single-stroke.csv";

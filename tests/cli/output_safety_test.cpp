@@ -68,6 +68,7 @@ std::string run_into(const fs::path& scene, const fs::path& out, const std::stri
 // 16 MB zeroed) and the first still said complete=1. The second must be refused before it opens
 // anything, naming the folder and the first run's pid, and the first must end whole.
 TEST(OutputSafety, ASecondRunIntoABusyFolderIsRefusedAndTheFirstEndsWhole) {
+  BLEEDSIM_SKIP_UNLESS_H5PY();
   const fs::path dir = scratch_folder(), out = dir / "X";
   const fs::path first = write_scene(dir, "first", 150);
   const CliResult result = run_shell(
@@ -94,6 +95,7 @@ TEST(OutputSafety, ASecondRunIntoABusyFolderIsRefusedAndTheFirstEndsWhole) {
 // Item 6. A run that writes no PNGs left the previous run's PNGs and contact sheet beside its own
 // frames.h5; a failed run deleted the old PNGs but kept the old frames.h5.
 TEST(OutputSafety, TheFolderShowsOneWholeRunNeverAMix) {
+  BLEEDSIM_SKIP_UNLESS_H5PY();
   const fs::path dir = scratch_folder(), out = dir / "out";
   const fs::path with_pngs = write_scene(dir, "with-pngs", 12), without = write_scene(dir, "without", 9);
   ASSERT_EQ(run_shell(run_into(with_pngs, out, "--png-every 4 --contact-sheet 3")).exit_code, 0);
@@ -116,6 +118,7 @@ TEST(OutputSafety, TheFolderShowsOneWholeRunNeverAMix) {
 // the run with exit 1 and one line naming the file and the OS error; the finished frames stay, in a
 // file that opens; the last whole run is untouched.
 TEST(OutputSafety, AFileSizeLimitEndsTheRunInOneLineKeepingItsFrames) {
+  BLEEDSIM_SKIP_UNLESS_H5PY();
   const fs::path dir = scratch_folder(), out = dir / "out";
   const fs::path scene = write_scene(dir, "limited", 60);
   ASSERT_EQ(run_shell(run_into(scene, out)).exit_code, 0);
@@ -160,6 +163,7 @@ bool mount_namespaces_available() {
 // frames.h5.partial; full mid-run, the message came on two lines with "bytes actually written =
 // 18446744073709551615". Now: exit 1, one line with the OS error, the last whole run untouched.
 TEST(OutputSafety, AFullDiskEndsTheRunInOneLineLeavingTheLastRunWhole) {
+  BLEEDSIM_SKIP_UNLESS_H5PY();
   if (!mount_namespaces_available()) GTEST_SKIP() << "no user namespaces here: cannot make a small file system to fill";
   const fs::path dir = scratch_folder();
   const fs::path scene = write_scene(dir, "filling", 60), small = write_scene(dir, "small", 3);
@@ -203,6 +207,7 @@ TEST(OutputSafety, AFullDiskEndsTheRunInOneLineLeavingTheLastRunWhole) {
 // A run killed outright (SIGKILL) stops wherever it is: the folder's last whole run is untouched,
 // and the killed run's frames, each flushed as it was written, open in its partial file.
 TEST(OutputSafety, AKilledRunLeavesTheLastRunWholeAndItsOwnFramesReadable) {
+  BLEEDSIM_SKIP_UNLESS_H5PY();
   const fs::path dir = scratch_folder(), out = dir / "out";
   ASSERT_EQ(run_shell(run_into(write_scene(dir, "done", 3), out)).exit_code, 0);
   const std::string before = read_bytes(out / "frames.h5");

@@ -50,6 +50,7 @@ std::vector<char> dataset_bytes(const fs::path& file, const char* name) {
 }
 
 TEST(Run, WritesHdf5AndPngsAndSaysWhere) {
+  BLEEDSIM_SKIP_UNLESS_H5PY();
   const fs::path out = scratch_folder() / "out";
   const CliResult result =
       run_cli("run '" + scenario("golden/spread-single.toml") + "' --backend cpu --png-every 10 --out '" + out.string() + "'");
@@ -159,6 +160,7 @@ TEST(Run, ThreadCountsGiveTheSameHashes) {
 }
 
 TEST(Run, ASceneWithoutTheSpreadWritesNoSpreadField) {
+  BLEEDSIM_SKIP_UNLESS_H5PY();
   const fs::path out = scratch_folder() / "out";
   const CliResult result = run_cli("run '" + scenario("tissue-only.toml") + "' --backend cpu -q --out '" + out.string() + "'");
   ASSERT_EQ(result.exit_code, 0) << result.output;
