@@ -10,6 +10,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 #include <stdexcept>
 #include <system_error>
@@ -233,6 +234,21 @@ class Swap {
   fs::path folder_, swap_, old_;
 };
 
+// A killed or failed command's files are cleared with a word, not silently: the user may have
+// wanted its frames.
+void say_what_is_cleared(const fs::path& partial) {
+  if (!present(partial)) return;
+  std::error_code ec;
+  std::vector<std::string> left;
+  for (fs::recursive_directory_iterator it(partial, ec), end; !ec && it != end; it.increment(ec))
+    if (!it->is_directory(ec)) left.push_back(fs::relative(it->path(), partial, ec).string());
+  if (left.empty()) return;
+  std::sort(left.begin(), left.end());
+  std::cerr << "bleedsim: note: clearing '" << partial.string() << "': " << left.size()
+            << (left.size() == 1 ? " file" : " files") << " a killed or failed command left there (" << left.front()
+            << (left.size() > 1 ? ", ..." : "") << "); copy them away before a run into this folder to keep them\n";
+}
+
 }  // namespace
 
 std::string OutputFiles::longest_path(const std::vector<std::string>& paths) {
@@ -254,6 +270,7 @@ OutputFiles::OutputFiles(const OutputFolder& folder, std::vector<std::string> na
       throw folder.error("'" + (folder_ / name).string() + "' was not written by a bleedsim run in this folder (its " +
                          kManifest + " does not list it); move it away, or write to another folder");
   const fs::path partial = folder_ / kPartial;
+  say_what_is_cleared(partial);
   std::error_code ec;
   fs::remove_all(partial, ec);
   check(ec, "clear", partial);

@@ -224,6 +224,25 @@ TEST(OutputSafety, AKilledRunLeavesTheLastRunWholeAndItsOwnFramesReadable) {
   EXPECT_GE(read.frames_written, 1);
 }
 
+// Issue 38, item 15: the next run cleared a killed run's finished frames without a word. It still
+// clears them (the folder is the next run's), and says what it clears and where.
+TEST(OutputSafety, TheNextRunSaysWhatAKilledRunLeftThatItClears) {
+  const fs::path dir = scratch_folder(), out = dir / "out";
+  const fs::path scene = write_scene(dir, "done", 3);
+  ASSERT_EQ(run_shell(run_into(scene, out)).exit_code, 0);
+  fs::create_directories(out / ".bleedsim-partial");
+  write_text(out / ".bleedsim-partial" / "frames.h5.partial", "the frames a killed run wrote");
+  const CliResult next = run_shell(run_into(scene, out));
+  EXPECT_EQ(next.exit_code, 0) << next.output;
+  EXPECT_NE(next.output.find("bleedsim: note: clearing '" + (out / ".bleedsim-partial").string() +
+                             "': 1 file a killed or failed command left there (frames.h5.partial)"),
+            std::string::npos)
+      << next.output;
+  EXPECT_FALSE(fs::exists(out / ".bleedsim-partial" / "frames.h5.partial"));
+  const CliResult quiet = run_shell(run_into(scene, out));
+  EXPECT_EQ(quiet.output.find("clearing"), std::string::npos) << "nothing was left to clear: " << quiet.output;
+}
+
 // The base scene of issue 38: 32 x 24 px, 0.2 s (6 frames), the spread and particles; quick enough
 // to run a few hundred times.
 fs::path write_small_scene(const fs::path& dir, const std::string& name) {
