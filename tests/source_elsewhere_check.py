@@ -53,12 +53,19 @@ def suites_to_run(source):
     return sorted({suite for path in reading for suite in TEST_SUITE.findall(files[path])})
 
 
+def is_build_folder(source, path):
+    """A CMake build folder (any preset's, not only the one under test), or the presets' build/ at
+    the top of the tree: their test outputs hold named pipes, and sparse files a copy fills out."""
+    return os.path.exists(os.path.join(path, "CMakeCache.txt")) or path == os.path.join(source, "build")
+
+
 def copy_of_tree(source, build, scratch):
-    """The source tree without .git and the build, in scratch/elsewhere."""
+    """The source tree without .git and any build folder, in scratch/elsewhere."""
     copy = os.path.join(scratch, "elsewhere")
     build = os.path.realpath(build)
     shutil.copytree(source, copy, ignore=lambda folder, names: [
-        n for n in names if n == ".git" or os.path.realpath(os.path.join(folder, n)) == build])
+        n for n in names if n == ".git" or os.path.realpath(os.path.join(folder, n)) == build
+        or is_build_folder(source, os.path.join(folder, n))])
     return copy
 
 
