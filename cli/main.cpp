@@ -9,6 +9,7 @@
 #include <initializer_list>
 #include <iostream>
 #include <memory>
+#include <new>
 #include <string>
 #include <vector>
 
@@ -84,6 +85,17 @@ struct WithNoPlots {
   }
 };
 
+// What a command that failed says, in one line whatever a library put in its message. The readers
+// and the run count their memory before allocating it; running out anyway is said plainly, naming
+// the command (`command`: "bleedsim run"), not as a bare std::bad_alloc.
+std::string failure_text(const std::exception& e, const std::string& command) {
+  if (dynamic_cast<const std::bad_alloc*>(&e)) return "out of host memory while running '" + command + "'";
+  std::string what = e.what();
+  for (char& c : what)
+    if (c == '\n' || c == '\r') c = ' ';
+  return what;
+}
+
 // `bleedsim study` over the MPI ranks a launcher started (or this process alone): every rank runs
 // its share of the jobs; an error ends every rank, and only rank 0 says it (every rank would say
 // the same). The ranks end MPI together when Ranks goes.
@@ -96,7 +108,7 @@ int study_on_ranks(const StudyOptions& study) {
     if (ranks.is_root()) std::cerr << "bleedsim: error: " << e.what() << "\n";
     return kExitBadInput;
   } catch (const std::exception& e) {
-    if (ranks.is_root()) std::cerr << "bleedsim: failed: " << e.what() << "\n";
+    if (ranks.is_root()) std::cerr << "bleedsim: failed: " << failure_text(e, "bleedsim study") << "\n";
     return kExitFailed;
   }
 }
@@ -278,19 +290,22 @@ Command add_trace_command(CLI::App& app) {
   return {command, [subcommands] { return run_chosen(subcommands); }};
 }
 
+// "bleedsim trace info": the program and the subcommands the command line chose.
+std::string chosen_command(const CLI::App& app) {
+  const std::vector<CLI::App*> chosen = app.get_subcommands();
+  const std::string name = app.get_parent() ? app.get_name() : "bleedsim";
+  return chosen.empty() ? name : name + " " + chosen_command(*chosen.front());
+}
+
 // The chosen command's exit code; an error it ends with is said in one line.
-int run_reporting_errors(const std::vector<Command>& commands) {
+int run_reporting_errors(const std::vector<Command>& commands, const std::string& command) {
   try {
     return run_chosen(commands);
   } catch (const bleedsim::InputError& e) {
     std::cerr << "bleedsim: error: " << e.what() << "\n";
     return kExitBadInput;
   } catch (const std::exception& e) {
-    // One line, whatever a library put in its message.
-    std::string what = e.what();
-    for (char& c : what)
-      if (c == '\n' || c == '\r') c = ' ';
-    std::cerr << "bleedsim: failed: " << what << "\n";
+    std::cerr << "bleedsim: failed: " << failure_text(e, command) << "\n";
     return kExitFailed;
   }
 }
@@ -315,5 +330,5 @@ int main(int argc, char** argv) {
   // A file size limit (ulimit -f) must end a write with EFBIG, which the writers report, not kill
   // the process without a word.
   std::signal(SIGXFSZ, SIG_IGN);
-  return run_reporting_errors(commands);
+  return run_reporting_errors(commands, chosen_command(app));
 }

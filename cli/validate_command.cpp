@@ -63,6 +63,18 @@ RunOutline outline(const Scene& scene, std::int64_t stylus_cuts) {
   return run;
 }
 
+// The backend's memory, and the host memory its files take as they are read, each file's part named
+// (the numbers the run checks before it reads them).
+std::string memory_line(const Scene& scene, const Resolved& resolved, const MemoryParts& inputs) {
+  std::string line = human_bytes(double(Pipeline::backend_bytes(scene, resolved))) + " on the backend";
+  if (inputs.empty()) return line;
+  std::string parts;
+  for (const MemoryPart& part : merged(inputs))
+    parts += (parts.empty() ? "" : ", ") + human_bytes(part.bytes.as_double()) + " for " + part.what;
+  return line + "; " + human_bytes(total_bytes(inputs).as_double()) + " of host memory at the most to read its files (" +
+         parts + ")";
+}
+
 }  // namespace
 
 int validate_command(const std::string& scenario) {
@@ -92,8 +104,7 @@ int validate_command(const std::string& scenario) {
   std::printf("  stages     %s\n", stages.c_str());
   const std::int64_t stylus_cuts = scene.trace ? describe_haptics(scene) : 0;
   std::printf("%s", describe_effects(scene, resolved, outline(scene, stylus_cuts)).c_str());
-  std::printf("  memory     %s on the backend\n",
-              human_bytes(double(Pipeline::backend_bytes(scene, resolved))).c_str());
+  std::printf("  memory     %s\n", memory_line(scene, resolved, file.input_memory).c_str());
   std::printf("  output     %s (HDF5 %s, PNG %s)\n", out.dir.c_str(), out.hdf5 ? "on" : "off",
               out.png_every > 0 ? ("every " + std::to_string(out.png_every)).c_str() : "off");
   return 0;

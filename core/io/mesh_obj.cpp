@@ -6,6 +6,7 @@
 #include <charconv>
 #include <cmath>
 #include <cstdint>
+#include <istream>
 #include <map>
 #include <optional>
 #include <string_view>
@@ -16,6 +17,7 @@
 
 #include "core/io/text_file.h"
 #include "core/mesh/polygon_triangles.h"
+#include "core/runtime/count.h"
 #include "core/runtime/input_error.h"
 
 // Only this translation unit includes tinyobjloader; its reals are doubles here.
@@ -114,6 +116,68 @@ const std::array<ElementKind, 3>& element_kinds() {
       {"vn", "normal", {"x", "y", "z"}, {3}, "a vn line has x y z"},
   }};
   return kinds;
+}
+
+// What a mesh file holds, counted a buffer at a time as for_each_statement() would split it: its
+// bytes, its v, vt and vn lines, its f lines, their corners and the triangles they are cut into.
+struct MeshShape {
+  std::uint64_t bytes = 0, faces = 0, corners = 0, triangles = 0;
+  std::array<std::uint64_t, 3> elements{};
+};
+
+MeshShape shape_of(std::istream& in) {
+  MeshShape shape;
+  std::string keyword;  // the line's first field, up to a character longer than any element's
+  std::uint64_t fields = 0;
+  bool in_field = false, comment = false;
+  const auto end_line = [&] {
+    const std::uint64_t after = fields > 0 ? fields - 1 : 0;
+    if (keyword == "f") {
+      ++shape.faces;
+      shape.corners += after;
+      if (after >= 3) shape.triangles += after - 2;
+    }
+    for (std::size_t e = 0; e < shape.elements.size(); ++e)
+      if (keyword == element_kinds()[e].keyword) ++shape.elements[e];
+    keyword.clear();
+    fields = 0;
+    in_field = comment = false;
+  };
+  std::vector<char> buffer(1 << 16);
+  while (in.read(buffer.data(), std::streamsize(buffer.size())) || in.gcount() > 0) {
+    shape.bytes += std::uint64_t(in.gcount());
+    for (std::streamsize i = 0; i < in.gcount(); ++i) {
+      const char c = buffer[std::size_t(i)];
+      if (c == '\n' || c == '\r') end_line();
+      else if (c == '#') comment = true;
+      else if (c == ' ' || c == '\t') in_field = false;
+      else if (!comment) {
+        if (!in_field) ++fields;
+        in_field = true;
+        if (fields == 1 && keyword.size() < 3) keyword += c;
+      }
+    }
+  }
+  end_line();
+  return shape;
+}
+
+// The most reading holds at once, from what tinyobjloader and parse_tissue_mesh() keep of each
+// element (their vectors counted at twice their size: they grow by doubling): tinyobjloader holds
+// a v's x y z and weight, a vt's u v and w, a vn's x y z, a corner's three indices and a face's
+// corner count, material and smoothing group; parse_tissue_mesh() a position and a uv, a face's
+// line, a triangle's corners, uvs and line. Beside them, first, tinyobjloader's copy of the
+// geometry text and its faces as it parses, each a vector of its corners; then the edge map, a node
+// and a vector for each of about 1.5 edges a triangle.
+MemoryPart memory_for(const MeshShape& shape, const std::string& path, const std::string& key) {
+  const Count held = Count(2) * (Count(shape.elements[0]) * (32 + 24) + Count(shape.elements[1]) * (24 + 16) +
+                                 Count(shape.elements[2]) * 24 + Count(shape.corners) * 12 + Count(shape.faces) * (9 + 8) +
+                                 Count(shape.triangles) * (24 + 8));
+  const Count text = Count(2) * shape.bytes;  // the file's text, and its geometry
+  const Count parsing = shape.bytes + Count(shape.faces) * (64 + 32) + Count(shape.corners) * 12;
+  const Count edges = Count(shape.triangles) * 180;
+  return {key, "reading the mesh '" + path + "' (" + std::to_string(shape.triangles) + " triangles)",
+          text + held + std::max(parsing, edges)};
 }
 
 // The OBJ statements a tissue mesh is made of: vertices, texture coordinates, normals and faces.
@@ -262,7 +326,13 @@ std::vector<std::array<int, 3>> face_triangles(const TissueMesh& mesh, const tin
 
 }  // namespace
 
+MemoryPart mesh_memory(const std::string& path, const std::string& key) {
+  std::ifstream in = open_text_file(path, "mesh");
+  return memory_for(shape_of(in), path, key);
+}
+
 TissueMesh load_tissue_mesh(const std::string& path, const MeshBudget& budget, const std::string& key) {
+  require_memory({mesh_memory(path, key)}, budget.memory_room.value_or(available_host_memory()), "host");
   return parse_tissue_mesh(read_text_file(path, "mesh", budget.file_bytes), path, budget, key);
 }
 

@@ -7,9 +7,11 @@
 // sheets), and no more triangles than a budget allows. Anything else is an InputError naming the
 // file, the line, the face where there is one, and the problem.
 #include <cstddef>
+#include <optional>
 #include <string>
 
 #include "core/mesh/tissue_mesh.h"
+#include "core/runtime/memory.h"
 
 namespace bleedsim {
 
@@ -18,10 +20,17 @@ namespace bleedsim {
 struct MeshBudget {
   std::size_t triangles = 1u << 22;
   std::size_t file_bytes = std::size_t(512) << 20;
+  // The host memory reading the file may take (none given: what available_host_memory() reports).
+  std::optional<std::size_t> memory_room = {};
 };
+
+// The most host memory load_tissue_mesh() holds at once for `path`, under `key`: counted from a pass
+// over the file, a buffer at a time, that counts its elements, its faces and their corners.
+MemoryPart mesh_memory(const std::string& path, const std::string& key);
 
 // Reads and checks `path` (see above); throws InputError naming the file and, where it can, the line
 // and the face (1-based, in file order, after polygons are cut into triangles), under the key `key`.
+// Its memory (mesh_memory()) is counted, and refused past the budget's room, before it is read.
 TissueMesh load_tissue_mesh(const std::string& path, const MeshBudget& budget = {},
                             const std::string& key = "tissue.mesh");
 // The same for the text of an OBJ file, `path` naming it in messages. A material library it names

@@ -436,7 +436,12 @@ TissueFile read_tissue_table(Reader& r, const toml::table& root, Scenario& s) {
   if (!tissue.mesh.empty()) {
     refuse_what_a_mesh_replaces(s);
     s.scene.mesh_source = named_file(s, "tissue.mesh", "mesh file", tissue.mesh).path;
-    s.scene.mesh = std::make_shared<const MeshSurface>(placed(load_tissue_mesh(s.scene.mesh_source), tissue.placement));
+    s.input_memory.push_back(mesh_memory(s.scene.mesh_source, "tissue.mesh"));
+    try {
+      s.scene.mesh = std::make_shared<const MeshSurface>(placed(load_tissue_mesh(s.scene.mesh_source), tissue.placement));
+    } catch (const InputError& e) {
+      throw s.placed(e);  // the memory check names the key, not where it was written
+    }
     refuse_a_mesh_the_panel_cannot_hold(s);
   }
   return tissue;
@@ -444,6 +449,7 @@ TissueFile read_tissue_table(Reader& r, const toml::table& root, Scenario& s) {
 
 void read_tissue(const TissueFile& tissue, Scenario& s, ReadTissue how) {
   Scene& scene = s.scene;
+  const Domain& d = scene.domain;
   MemoryParts parts = Pipeline::memory(scene, resolve(scene));
   parts.push_back(scene.domain.memory(4));
   const VesselParams* vessels = scene.effects.find<VesselParams>();
@@ -454,26 +460,30 @@ void read_tissue(const TissueFile& tissue, Scenario& s, ReadTissue how) {
                      "name a PNG map of its vessels"));
   scene.tissue_source = "procedural";
   std::optional<InputFile> texture, vessel_map;
+  // Each PNG's decoding, from its header; each is freed before the next, but they are counted as if
+  // held together.
+  MemoryParts decoding;
   if (!tissue.texture.empty()) {
     texture = named_file(s, "tissue.texture", "texture", tissue.texture);
     scene.tissue_source = texture->path;
-    parts.push_back(texture_memory(read_tissue_png_header(*texture), *texture));
+    decoding.push_back(texture_memory(read_tissue_png_header(*texture), *texture, d.width_px, d.height_px));
   }
-  // The vessels' map, like the tissue's texture: the PNG's header read and its memory counted first.
+  // The vessels' map, like the tissue's texture.
   if (vessels) {
     parts.push_back({"vessels.map", "the vessel density map", scene.domain.pixels() * Count(sizeof(float))});
     if (!procedural_vessels) {
       vessel_map = named_file(s, "vessels.map", "vessel map", vessels->map);
-      parts.push_back(texture_memory(read_tissue_png_header(*vessel_map), *vessel_map));
+      decoding.push_back(texture_memory(read_tissue_png_header(*vessel_map), *vessel_map, d.width_px, d.height_px));
     }
   }
+  parts.insert(parts.end(), decoding.begin(), decoding.end());
+  s.input_memory.insert(s.input_memory.end(), decoding.begin(), decoding.end());
   try {
     require_memory(parts, available_host_memory(), "host");
   } catch (const InputError& e) {
     throw s.placed(e);
   }
   if (how == ReadTissue::header_only) return;
-  const Domain& d = scene.domain;
   scene.tissue = texture ? load_tissue_png(*texture, d.width_px, d.height_px)
                         : procedural_tissue(d.width_px, d.height_px, scene.seed);
   if (procedural_vessels) scene.vessel_density = procedural_vessel_density(d.width_px, d.height_px, scene.seed);

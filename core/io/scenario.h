@@ -12,6 +12,7 @@
 #include "core/mesh/view_render.h"
 #include "core/runtime/input_error.h"
 #include "core/runtime/input_file.h"
+#include "core/runtime/memory.h"
 #include "core/runtime/params.h"
 #include "core/scene/scene.h"
 
@@ -27,6 +28,9 @@ struct Scenario {
   // The files it names (a trace, a mesh, a texture, a vessel map), in the order read, each with its
   // key: what a study's fingerprint hashes beside the text.
   std::vector<InputFile> files;
+  // The host memory reading each of them takes at the most (a trace's samples kept, a mesh's reading,
+  // a texture's decoding), under its key, in the order read: what validate says beside the backend's.
+  MemoryParts input_memory;
 
   // Where `key` was written (the file alone when it was not).
   SourcePlace place_of(const std::string& key) const;

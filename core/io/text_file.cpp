@@ -1,7 +1,5 @@
 #include "core/io/text_file.h"
 
-#include <cerrno>
-#include <cstring>
 #include <filesystem>
 #include <sstream>
 
@@ -11,12 +9,7 @@
 namespace bleedsim {
 
 std::ifstream open_text_file(const std::string& path, const std::string& what) {
-  const InputFile file{path, what + " file"};
-  require_regular_file(file);
-  errno = 0;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw unreadable(file, std::strerror(errno ? errno : ENOENT));
-  return in;
+  return open_input(InputFile{path, what + " file"});
 }
 
 std::string read_text_file(const std::string& path, const std::string& what, std::uintmax_t max_bytes) {

@@ -78,7 +78,7 @@ Image resample_bilinear(const std::uint8_t* src, int src_w, int src_h, int width
 }
 
 constexpr unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-constexpr std::size_t kHeaderBytes = 24;  // the signature, then IHDR's length, type, width, height
+constexpr std::size_t kHeaderBytes = 29;  // the signature, then IHDR's length, type and 13 bytes of data
 
 struct StbFree {
   void operator()(stbi_uc* pixels) const { stbi_image_free(pixels); }
@@ -93,7 +93,23 @@ InputError undecodable(const InputFile& file, const std::string& why) {
   return InputError(file.where, file.key, "cannot decode " + file.what + " '" + file.path + "' as a PNG: " + why);
 }
 
-// The width and height the first kHeaderBytes state, checked against the cap.
+// The channels a colour type stores (a palette's index is one), and the bit depths PNG allows it.
+struct ColourType {
+  int type;
+  int channels;
+  std::vector<int> depths;
+};
+
+const ColourType* colour_type(int type) {
+  static const ColourType kTypes[] = {
+      {0, 1, {1, 2, 4, 8, 16}}, {2, 3, {8, 16}}, {3, 1, {1, 2, 4, 8}}, {4, 2, {8, 16}}, {6, 4, {8, 16}}};
+  for (const ColourType& t : kTypes)
+    if (t.type == type) return &t;
+  return nullptr;
+}
+
+// The width and height the first kHeaderBytes state, checked against the cap, and how the pixels
+// are stored.
 TextureHeader parse_header(const unsigned char* bytes, std::size_t size, const InputFile& file) {
   if (size < kHeaderBytes || std::memcmp(bytes, kSignature, sizeof kSignature) != 0 ||
       std::memcmp(bytes + 12, "IHDR", 4) != 0)
@@ -105,17 +121,42 @@ TextureHeader parse_header(const unsigned char* bytes, std::size_t size, const I
                      file.what + " '" + file.path + "' is " + std::to_string(width) + " x " + std::to_string(height) +
                          " px; a " + file.what + " may be at most " + std::to_string(kMaxTextureSide) +
                          " px on a side (it is resampled to the panel anyway)");
-  return {int(width), int(height), size};
+  const int depth = bytes[24], type = bytes[25], interlace = bytes[28];
+  const ColourType* colour = colour_type(type);
+  if (!colour || std::find(colour->depths.begin(), colour->depths.end(), depth) == colour->depths.end())
+    throw undecodable(file, "its header states colour type " + std::to_string(type) + " at " + std::to_string(depth) +
+                                " bits, which PNG does not have");
+  if (interlace > 1) throw undecodable(file, "its header states interlace method " + std::to_string(interlace) +
+                                                 ", which PNG does not have");
+  return {int(width), int(height), depth, type, interlace == 1, size};
+}
+
+// The bytes a w x h image's filtered rows take: a filter byte and the packed samples, each row.
+std::uint64_t rows_bytes(std::int64_t w, std::int64_t h, int bits_per_pixel) {
+  if (w <= 0 || h <= 0) return 0;
+  return std::uint64_t(h) * ((std::uint64_t(w) * std::uint64_t(bits_per_pixel) + 7) / 8 + 1);
+}
+
+// What the image data inflates to: the rows, or the rows of Adam7's seven passes.
+std::uint64_t image_data_bytes(const TextureHeader& h) {
+  const int bits = h.bit_depth * colour_type(h.colour_type)->channels;
+  if (!h.interlaced) return rows_bytes(h.width, h.height, bits);
+  constexpr int x0[] = {0, 4, 0, 2, 0, 1, 0}, y0[] = {0, 0, 4, 0, 2, 0, 1};
+  constexpr int dx[] = {8, 8, 4, 4, 2, 2, 1}, dy[] = {8, 8, 8, 4, 4, 2, 2};
+  std::uint64_t bytes = 0;
+  for (int p = 0; p < 7; ++p)
+    bytes += rows_bytes((h.width - x0[p] + dx[p] - 1) / dx[p], (h.height - y0[p] + dy[p] - 1) / dy[p], bits);
+  return bytes;
 }
 
 // stb_image trusts a PNG further than its header: it allocates an IDAT chunk's stated length before
 // reading it, and inflates the image data into a buffer it doubles for as long as the stream goes
 // on. So, before stb sees the file, every chunk must lie inside it, and the image data must inflate
-// to no more than the rows the header states (counted by texture_memory()): a 400-byte file that
+// to no more than the rows the header states (what texture_memory() counts): a 400-byte file that
 // claimed a 2 GB chunk made stb ask for 2 GB (found by fuzz/tissue_png_fuzzer), and a small file of
 // compressed zeros can inflate a thousandfold.
 void check_chunks(const unsigned char* bytes, std::size_t size, const TextureHeader& header, const InputFile& file) {
-  const Count most = Count(2) * Count(header.height) * (Count(header.width) * 8 + 1);
+  const Count most = image_data_bytes(header);
   z_stream inflater{};
   bool inflating = false, stream_checked = false;
   std::uint64_t inflated = 0;
@@ -159,18 +200,10 @@ void check_chunks(const unsigned char* bytes, std::size_t size, const TextureHea
 // For a file that cannot be opened or read: the OS's reason.
 InputError unreadable(const InputFile& file, int error) { return unreadable(file, std::strerror(error ? error : EIO)); }
 
-std::ifstream open_png(const InputFile& file) {
-  require_regular_file(file);
-  errno = 0;
-  std::ifstream in(file.path, std::ios::binary);
-  if (!in) throw unreadable(file, errno ? errno : ENOENT);
-  return in;
-}
-
 }  // namespace
 
 TextureHeader read_tissue_png_header(const InputFile& file) {
-  std::ifstream in = open_png(file);
+  std::ifstream in = open_input(file);
   unsigned char bytes[kHeaderBytes] = {};
   in.read(reinterpret_cast<char*>(bytes), kHeaderBytes);
   TextureHeader header = parse_header(bytes, std::size_t(in.gcount()), file);
@@ -180,14 +213,40 @@ TextureHeader read_tissue_png_header(const InputFile& file) {
   return header;
 }
 
-MemoryPart texture_memory(const TextureHeader& header, const InputFile& file) {
-  // Inflated: a filter byte and up to 4 channels of 2 bytes per pixel, each row; stb grows its buffer
-  // by doubling, so up to twice that. Decoded: 4 channels of up to 2 bytes, and the 8-bit copy.
+MemoryPart texture_memory(const TextureHeader& header, const InputFile& file, int width, int height) {
+  // What stb_image v2.27 holds at once, phase by phase (stbi__parse_png_file, stbi__do_png):
   const Count pixels = Count(header.width) * Count(header.height);
-  const Count inflated = Count(2) * Count(header.height) * (Count(header.width) * 8 + 1);
+  const int bytes_per_channel = header.bit_depth == 16 ? 2 : 1;
+  // the IDAT chunks, gathered into a buffer that doubles from 4 KiB (at a doubling, the old beside
+  // the new);
+  const Count file_bytes = header.file_bytes;
+  const Count gathered = Count(2) * file_bytes + 4096;
+  // the inflated rows beside them, in a buffer of the non-interlaced size: Adam7's passes take a
+  // little more, so for them it doubles once (the old beside the new);
+  const Count guess = rows_bytes(header.width, header.height, header.bit_depth * colour_type(header.colour_type)->channels);
+  const Count inflated = header.interlaced ? Count(2) * guess : guess;
+  // the unfiltered image, with the channels stored and an alpha for a tRNS chunk (grey, RGB), beside
+  // the rows; de-interlacing holds the whole image beside a pass's, the largest W x ⌈H/2⌉;
+  const int first_channels = header.colour_type == 0 ? 2 : header.colour_type == 2 ? 4 : colour_type(header.colour_type)->channels;
+  const Count pixel_bytes = first_channels * bytes_per_channel;
+  const Count first = pixels * pixel_bytes;
+  const Count unfiltered =
+      header.interlaced ? first + Count(header.width) * Count((header.height + 1) / 2) * pixel_bytes : first;
+  // the image converted to RGBA (a palette expanded), then 16 bits narrowed to 8, each beside the
+  // one before;
+  const Count rgba = pixels * 4;
+  const Count widened = first_channels == 4 ? Count(0) : first + rgba * Count(bytes_per_channel);
+  const Count narrowed = bytes_per_channel == 2 ? rgba * 2 + rgba : Count(0);
+  // then ours: the RGBA beside its copy, or beside the panel resampled from it.
+  const bool resamples = header.width != width || header.height != height;
+  const Count resampled =
+      rgba + (resamples ? Count(width) * Count(height) * 4 + (Count(width) + Count(height)) * sizeof(Tap) : rgba);
+  const Count most = std::max({file_bytes + gathered, gathered + (header.interlaced ? Count(3) * guess : guess),
+                               inflated + unfiltered, widened, narrowed, resampled});
   return {file.key,
-          "decoding the " + std::to_string(header.width) + " x " + std::to_string(header.height) + " px " + file.what,
-          Count(header.file_bytes) + inflated + pixels * (8 + 4)};
+          "decoding the " + std::to_string(header.width) + " x " + std::to_string(header.height) + " px " + file.what +
+              " '" + file.path + "'",
+          file_bytes + most};
 }
 
 Image load_tissue_png(const InputFile& file, int width, int height) {
@@ -197,7 +256,7 @@ Image load_tissue_png(const InputFile& file, int width, int height) {
   }
   // The header first, so that a file too large to decode is refused before it is read.
   const TextureHeader header = read_tissue_png_header(file);
-  std::ifstream in = open_png(file);
+  std::ifstream in = open_input(file);
   std::string bytes(header.file_bytes, '\0');
   errno = 0;
   if (!in.read(bytes.data(), std::streamsize(bytes.size()))) throw unreadable(file, errno);
@@ -211,7 +270,7 @@ Image decode_tissue_png(const std::string& bytes, const InputFile& file, int wid
   }
   const auto* data = reinterpret_cast<const stbi_uc*>(bytes.data());
   const TextureHeader header = parse_header(data, bytes.size(), file);
-  const MemoryPart need = texture_memory(header, file);
+  const MemoryPart need = texture_memory(header, file, width, height);
   if (need.bytes > Count(room))
     throw InputError(file.where, file.key,
                      need.what + " '" + file.path + "' needs " + human_bytes(need.bytes.as_double()) +

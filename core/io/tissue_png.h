@@ -18,19 +18,24 @@ constexpr int kMaxTextureSide = 16384;
 struct TextureHeader {
   int width = 0;
   int height = 0;
+  int bit_depth = 8;    // bits per channel (per palette index for colour type 3)
+  int colour_type = 6;  // 0 grey, 2 RGB, 3 palette, 4 grey and alpha, 6 RGBA
+  bool interlaced = false;
   std::uint64_t file_bytes = 0;
 };
 
 // The PNG files are a texture or a vessel map: messages name the file as what it is ("cannot read
 // vessel map 'v.png'"), at the key that named it.
 
-// Reads the signature and the IHDR chunk of the file (24 bytes): throws InputError when it is not a
-// regular file, cannot be read, is not a PNG, or states more than kMaxTextureSide pixels on a side.
+// Reads the signature and the IHDR chunk of the file (33 bytes): throws InputError when it is not a
+// regular file, cannot be read, is not a PNG, states a bit depth and colour type PNG does not have,
+// or more than kMaxTextureSide pixels on a side.
 TextureHeader read_tissue_png_header(const InputFile& file);
 
-// The host memory decoding it takes, under the file's key: the file, the inflated rows (which stb
-// may hold twice over while it grows them) and the decoded image, at 16 bits per channel at worst.
-MemoryPart texture_memory(const TextureHeader& header, const InputFile& file);
+// The most host memory loading it for a width x height panel holds at once, under the file's key:
+// the file's bytes beside the largest of the buffers stb_image (v2.27) and the resampling hold
+// together, from the header's size, bit depth, colour type and interlacing.
+MemoryPart texture_memory(const TextureHeader& header, const InputFile& file, int width, int height);
 
 // Loads a PNG (any channel count, 8 or 16 bit) as RGBA8 and resamples it bilinearly to
 // width × height when its size differs. Throws InputError when it cannot, std::invalid_argument for

@@ -4,7 +4,6 @@
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 
 #include "core/runtime/hash.h"
 
@@ -44,11 +43,16 @@ void require_regular_file(const InputFile& file) {
   throw unreadable(file, "it is " + kind_of(status.type()) + ", not a regular file");
 }
 
-std::uint64_t hash_of_file(const InputFile& file) {
+std::ifstream open_input(const InputFile& file) {
   require_regular_file(file);
   errno = 0;
   std::ifstream in(file.path, std::ios::binary);
   if (!in) throw unreadable(file, std::strerror(errno ? errno : EIO));
+  return in;
+}
+
+std::uint64_t hash_of_file(const InputFile& file) {
+  std::ifstream in = open_input(file);
   std::uint64_t hash = fnv1a64(nullptr, 0);
   std::array<char, 1 << 16> piece;
   while (in.read(piece.data(), piece.size()) || in.gcount() > 0)

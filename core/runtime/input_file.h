@@ -2,6 +2,7 @@
 // A file the user names (a scenario, a texture, a vessel map, a mesh, a trace, a shard), as the
 // messages about it name it, and the check every reader makes before opening one.
 #include <cstdint>
+#include <fstream>
 #include <string>
 
 #include "core/runtime/input_error.h"
@@ -24,6 +25,10 @@ InputError unreadable(const InputFile& file, const std::string& why);
 // directory", "a character device"). Looks with stat() and never opens the file: opening a named
 // pipe waits for a writer, forever.
 void require_regular_file(const InputFile& file);
+
+// The file opened for reading, binary: the same refusals as require_regular_file, and unreadable()
+// for a file that cannot be opened (no permission).
+std::ifstream open_input(const InputFile& file);
 
 // FNV-1a 64 of the file's bytes, read in pieces; the same refusals as require_regular_file, and
 // unreadable() for a file that cannot be read.

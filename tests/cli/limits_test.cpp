@@ -1,7 +1,7 @@
-// Limits that hold (issue 13, items 2 and 5): sizes are counted before anything narrows them, and
-// every input's memory — the run's, a texture's, a trace's — is counted before it is read or
-// allocated, the refusal naming the key that sets the size. Each case here ran out of memory, or
-// on with a wrong size, before.
+// Limits that hold (issue 13, items 2 and 5; issue 38, item 13): sizes are counted before anything
+// narrows them, and every input's memory — the run's, a texture's, a mesh's, a trace's — is counted
+// before it is read or allocated, the refusal naming the file and the key that sets the size. Each
+// case here ran out of memory, or on with a wrong size, before.
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -108,6 +108,72 @@ TEST(Limits, ATraceTooLargeForMemoryIsRefusedAtItsKey) {
   expect_both_refuse(dir, kScene + "[haptics]\ntrace = \"long.csv\"\n",
                      {"s.toml:8:9: haptics.trace: this scene needs", "for a trace of 2500005 lines", "host memory"},
                      "ulimit -v 150000;");
+}
+
+// Issue 38, item 13: a mesh's memory is counted from a pass over its lines before it is read. A
+// 480,000-triangle mesh is counted at about 260 MiB to read (it takes some 190); under a 150 MB
+// limit it ended in a bare std::bad_alloc, exit 1.
+TEST(Limits, AMeshTooLargeForMemoryIsRefusedAtItsKey) {
+  BLEEDSIM_SKIP_UNLESS_ADDRESS_SPACE_CAN_BE_LIMITED();
+  const fs::path dir = scratch_folder();
+  {
+    // A 600 x 400 grid of quads over the panel, each cut into two triangles.
+    std::ofstream mesh(dir / "grid.obj");
+    const int nx = 600, ny = 400;
+    for (int j = 0; j <= ny; ++j)
+      for (int i = 0; i <= nx; ++i) mesh << "v " << 16.0 * i / nx << " " << 12.0 * j / ny << " 0\n";
+    for (int j = 0; j <= ny; ++j)
+      for (int i = 0; i <= nx; ++i) mesh << "vt " << double(i) / nx << " " << double(j) / ny << "\n";
+    for (int j = 0; j < ny; ++j)
+      for (int i = 0; i < nx; ++i) {
+        const int a = j * (nx + 1) + i + 1, b = a + 1, c = a + nx + 1, d = c + 1;
+        mesh << "f " << a << "/" << a << " " << b << "/" << b << " " << d << "/" << d << "\n";
+        mesh << "f " << a << "/" << a << " " << d << "/" << d << " " << c << "/" << c << "\n";
+      }
+  }
+  expect_both_refuse(dir, kScene + "[tissue]\nmesh = \"grid.obj\"\n",
+                     {"s.toml:8:8: tissue.mesh: this scene needs", "for reading the mesh '",
+                      "grid.obj' (480000 triangles)", "of host memory"},
+                     "ulimit -v 150000;");
+}
+
+// Issue 38, item 13: a 16384 x 16384 px PNG of 1 MB decodes to 1.75 GiB at its peak (the inflated
+// rows beside the RGBA image); validate said 50 KiB. Its memory line now counts it, and run, which
+// counts the same, decodes it under a limit that the former count of 7.5 GB refused.
+TEST(Limits, ValidateAndRunCountATexturesDecoding) {
+  const fs::path dir = scratch_folder();
+  const CliResult made = run_shell(
+      "'" + python() + "' -c '\n"
+      "import struct, sys, zlib\n"
+      "def chunk(kind, data): return struct.pack(\">I\", len(data)) + kind + data + struct.pack(\">I\", zlib.crc32(kind + data))\n"
+      "z = zlib.compressobj(9)\n"
+      "row = bytes(1 + 3 * 16384)\n"
+      "rows = b\"\".join(z.compress(row) for _ in range(16384)) + z.flush()\n"
+      "sys.stdout.buffer.write(b\"\\x89PNG\\r\\n\\x1a\\n\" + chunk(b\"IHDR\", struct.pack(\">IIBBBBB\", 16384, 16384, 8, 2, 0, 0, 0))"
+      " + chunk(b\"IDAT\", rows) + chunk(b\"IEND\", b\"\"))\n' > '" + (dir / "big.png").string() + "'");
+  ASSERT_EQ(made.exit_code, 0) << made.output;
+  write_text(dir / "s.toml", kScene + "[tissue]\ntexture = \"big.png\"\n");
+  const CliResult validated = run_cli("validate '" + (dir / "s.toml").string() + "'");
+  ASSERT_EQ(validated.exit_code, 0) << validated.output;
+  // The rows, 16384 · (1 + 3 · 16384) bytes, beside the RGBA image, 4 · 16384² bytes, and the file.
+  EXPECT_NE(validated.output.find("  memory     50.00 KiB on the backend; 1.75 GiB of host memory at the most to read "
+                                  "its files (1.75 GiB for decoding the 16384 x 16384 px texture '"),
+            std::string::npos)
+      << validated.output;
+  if (!address_space_can_be_limited()) return;  // the run under a limit: see BLEEDSIM_SKIP_UNLESS_...
+  const CliResult ran =
+      run_cli("run '" + (dir / "s.toml").string() + "' --backend cpu -j 1 --output-threads 1 --out '" +
+                  (dir / "out").string() + "'",
+              "ulimit -v 2500000;");
+  EXPECT_EQ(ran.exit_code, 0) << ran.output;
+  const CliResult refused =
+      run_cli("run '" + (dir / "s.toml").string() + "' --backend cpu --out '" + (dir / "out2").string() + "'",
+              "ulimit -v 1500000;");
+  EXPECT_EQ(refused.exit_code, 2) << refused.output;
+  EXPECT_NE(refused.output.find("s.toml:8:11: tissue.texture: this scene needs 1.75 GiB of host memory (1.75 GiB "
+                                "for decoding the 16384 x 16384 px texture '"),
+            std::string::npos)
+      << refused.output;
 }
 
 }  // namespace
