@@ -31,8 +31,9 @@ struct RunOptions {
 };
 
 int run_command(const RunOptions& options);
-// The scenario's simulation on the backend asked for; an InputError placed in the scenario file.
-std::unique_ptr<Simulation> make_simulation(const Scenario& scenario, const BackendChoice& backend);
+// The scenario's simulation on the backend asked for; an InputError placed in the scenario file. The
+// scene is moved into it, not copied (a trace's samples can be most of it): scenario.scene is left empty.
+std::unique_ptr<Simulation> make_simulation(Scenario& scenario, const BackendChoice& backend);
 
 struct StudyOptions {
   std::string scenario;

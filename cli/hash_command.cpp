@@ -11,7 +11,8 @@
 namespace bleedsim::cli {
 
 int hash_command(const std::string& scenario, const BackendChoice& backend) {
-  const std::unique_ptr<Simulation> made = make_simulation(load_scenario(scenario), backend);
+  Scenario file = load_scenario(scenario);
+  const std::unique_ptr<Simulation> made = make_simulation(file, backend);
   Simulation& sim = *made;
   std::fprintf(stderr, "bleedsim: hashing on %s (%s)\n", to_string(sim.backend().kind()),
                sim.backend().device_name().c_str());

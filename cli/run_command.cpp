@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <utility>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -77,16 +78,20 @@ std::vector<std::pair<std::string, std::string>> provenance(const Simulation& si
           {"scenario_text", scenario.text}};
 }
 
-// What the replay will play: the trace, its repairs, and how its span meets the run's.
+// What the replay will play: the samples read of the trace (as far as the run goes), their repairs,
+// and whether the trace ends before the run.
 void describe_replay(const Scene& s) {
   const Trace& trace = *s.trace;
   const double span_s = trace.samples.back().t_s - trace.samples.front().t_s;
-  std::printf("bleedsim: replaying %s: %zu samples over %.3f s through the 1 kHz haptic loop", trace.path.c_str(),
-              trace.samples.size(), span_s);
-  if (span_s < s.duration_s) std::printf(" (after it ends the stylus stays where the trace left it)");
-  if (span_s > s.duration_s) std::printf(" (the run ends %.3f s before the trace)", span_s - s.duration_s);
-  std::printf("\n");
+  const double played_s = double(s.haptic_ticks_through_frame(s.frame_count() - 1) - 1) / kHapticRate_hz;
+  std::printf("bleedsim: replaying %s: %zu samples over %.3f s through the 1 kHz haptic loop%s\n", trace.path.c_str(),
+              trace.samples.size(), span_s,
+              span_s < played_s ? " (after it ends the stylus stays where the trace left it)"
+                                : " (read as far as the run goes)");
   for (const std::string& repair : trace.repairs) std::printf("bleedsim: repaired %s\n", repair.c_str());
+  if (trace.repairs_made > trace.repairs.size())
+    std::printf("bleedsim: repaired %llu more dropouts\n",
+                static_cast<unsigned long long>(trace.repairs_made - trace.repairs.size()));
 }
 
 double seconds_since(Clock::time_point start) {
@@ -371,16 +376,16 @@ void print_summary(const Simulation& sim, const RunTally& tally, double wall_s, 
 
 }  // namespace
 
-std::unique_ptr<Simulation> make_simulation(const Scenario& scenario, const BackendChoice& backend) {
+std::unique_ptr<Simulation> make_simulation(Scenario& scenario, const BackendChoice& backend) {
   try {
-    return std::make_unique<Simulation>(scenario.scene, backend);
+    return std::make_unique<Simulation>(std::move(scenario.scene), backend);
   } catch (const InputError& e) {
     throw scenario.placed(e);  // the memory check names the key that sets the size: point at its line
   }
 }
 
 int run_command(const RunOptions& options) {
-  const Scenario scenario = scenario_for_run(options);
+  Scenario scenario = scenario_for_run(options);
   const std::string dir_key = output_dir_key(options, scenario);
   const SourcePlace dir_place = options.out_dir ? SourcePlace{} : scenario.place_of(dir_key);
   const std::unique_ptr<Simulation> made = make_simulation(scenario, options.backend);

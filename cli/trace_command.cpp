@@ -1,9 +1,11 @@
-// bleedsim trace info: what a recorded Falcon trace holds, after the loader has checked it.
+// bleedsim trace info: what a recorded Falcon trace holds, after the loader has checked it, read a
+// line at a time in the same memory whatever its length.
 // bleedsim trace synth: a synthetic trace written to a file, whole or not at all.
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -20,30 +22,64 @@
 namespace bleedsim::cli {
 namespace {
 
-// The stretches during which the cutting button (0x1) is held.
-struct Press {
-  double start_s, end_s;
-};
+// What `trace info` says of a trace's samples, gathered as they are read: none is kept, so a trace
+// of any length is described in the same memory.
+class SampleTally {
+ public:
+  // The cuts listed by their times; past them, only counted.
+  static constexpr std::size_t kPressesListed = 100;
 
-std::vector<Press> presses(const Trace& trace) {
-  std::vector<Press> found;
-  bool held = false;
-  for (const TraceSample& s : trace.samples) {
-    const bool now = s.buttons & 0x1;
-    if (now && !held) found.push_back({s.t_s, s.t_s});
-    if (now) found.back().end_s = s.t_s;
-    held = now;
+  // The stretches during which the cutting button (0x1) is held.
+  struct Press {
+    double start_s, end_s;
+  };
+
+  void add(const TraceSample& s) {
+    if (samples_++ == 0) first_s_ = s.t_s;
+    last_s_ = s.t_s;
+    const double at[] = {s.x_m, s.y_m, s.z_m};
+    for (int axis = 0; axis < 3; ++axis) {
+      low_m_[axis] = std::min(low_m_[axis], at[axis]);
+      high_m_[axis] = std::max(high_m_[axis], at[axis]);
+    }
+    const bool held = s.buttons & 0x1;
+    if (held && !held_) press_ = {s.t_s, s.t_s};
+    if (held) press_.end_s = s.t_s;
+    if (!held && held_) end_press();
+    held_ = held;
   }
-  return found;
-}
 
-double median_interval_s(const Trace& trace) {
-  std::vector<double> dt;
-  for (std::size_t i = 1; i < trace.samples.size(); ++i) dt.push_back(trace.samples[i].t_s - trace.samples[i - 1].t_s);
-  if (dt.empty()) return 0.0;
-  std::nth_element(dt.begin(), dt.begin() + dt.size() / 2, dt.end());
-  return dt[dt.size() / 2];
-}
+  void finish() {
+    if (held_) end_press();
+    held_ = false;
+  }
+
+  std::uint64_t samples() const { return samples_; }
+  double first_s() const { return first_s_; }
+  double last_s() const { return last_s_; }
+  // "-10.0 to 10.0 mm" along axis 0, 1 or 2 (x, y, z).
+  std::string range(int axis) const {
+    char text[64];
+    std::snprintf(text, sizeof text, "%.1f to %.1f mm", 1000.0 * low_m_[axis], 1000.0 * high_m_[axis]);
+    return text;
+  }
+  std::uint64_t presses() const { return presses_; }
+  const std::vector<Press>& listed() const { return listed_; }
+
+ private:
+  void end_press() {
+    ++presses_;
+    if (listed_.size() < kPressesListed) listed_.push_back(press_);
+  }
+
+  std::uint64_t samples_ = 0;
+  double first_s_ = 0, last_s_ = 0;
+  double low_m_[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, high_m_[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  bool held_ = false;
+  Press press_{0, 0};
+  std::uint64_t presses_ = 0;
+  std::vector<Press> listed_;
+};
 
 namespace fs = std::filesystem;
 
@@ -116,30 +152,31 @@ void write_whole(const std::string& path, const std::string& text) {
 }  // namespace
 
 int trace_info_command(const std::string& path, double max_repair_gap_ms) {
-  const Trace trace = load_trace(path, TraceOptions{max_repair_gap_ms / 1000.0, {}});
-  const std::vector<TraceSample>& s = trace.samples;
-  const auto range = [&](double TraceSample::*axis) {
-    const auto [low, high] = std::minmax_element(s.begin(), s.end(),
-                                                 [&](const TraceSample& a, const TraceSample& b) { return a.*axis < b.*axis; });
-    char text[64];
-    std::snprintf(text, sizeof text, "%.1f to %.1f mm", 1000.0 * (*low).*axis, 1000.0 * (*high).*axis);
-    return std::string(text);
-  };
-  const double interval = median_interval_s(trace);
+  SampleTally tally;
+  const Trace trace = read_trace(InputFile{path, "trace file"}, TraceOptions{max_repair_gap_ms / 1000.0, {}},
+                                 [&tally](const TraceSample& s) {
+                                   tally.add(s);
+                                   return true;
+                                 });
+  tally.finish();
+  const double interval = trace.median_interval_s;
   std::printf("%s: valid\n", path.c_str());
   std::printf("  device     %s\n", trace.metadata.count("device") ? trace.metadata.at("device").c_str() : "");
-  std::printf("  samples    %zu over %.3f s (t = %.4f to %.4f s)\n", s.size(), s.back().t_s - s.front().t_s,
-              s.front().t_s, s.back().t_s);
+  std::printf("  samples    %llu over %.3f s (t = %.4f to %.4f s)\n", static_cast<unsigned long long>(tally.samples()),
+              tally.last_s() - tally.first_s(), tally.first_s(), tally.last_s());
   std::printf("  rate       %g Hz stated, %.1f Hz measured (median interval %.4f ms)\n", trace.rate_hz,
               interval > 0 ? 1.0 / interval : 0.0, 1000.0 * interval);
-  std::printf("  workspace  x %s, y %s, z %s\n", range(&TraceSample::x_m).c_str(), range(&TraceSample::y_m).c_str(),
-              range(&TraceSample::z_m).c_str());
+  std::printf("  workspace  x %s, y %s, z %s\n", tally.range(0).c_str(), tally.range(1).c_str(), tally.range(2).c_str());
   std::printf("  force      %s\n", trace.has_force ? "recorded (fx_N, fy_N, fz_N)" : "not recorded");
-  const std::vector<Press> cuts = presses(trace);
-  std::printf("  cuts       %zu (button 0x1 held)", cuts.size());
-  for (const Press& p : cuts) std::printf("%s %.3f-%.3f s", &p == &cuts.front() ? ":" : ",", p.start_s, p.end_s);
-  std::printf("\n  gaps       %zu repaired\n", trace.repairs.size());
+  std::printf("  cuts       %llu (button 0x1 held)", static_cast<unsigned long long>(tally.presses()));
+  for (const SampleTally::Press& p : tally.listed())
+    std::printf("%s %.3f-%.3f s", &p == &tally.listed().front() ? ":" : ",", p.start_s, p.end_s);
+  if (tally.presses() > tally.listed().size())
+    std::printf(", and %llu more", static_cast<unsigned long long>(tally.presses() - tally.listed().size()));
+  std::printf("\n  gaps       %llu repaired\n", static_cast<unsigned long long>(trace.repairs_made));
   for (const std::string& repair : trace.repairs) std::printf("    %s\n", repair.c_str());
+  if (trace.repairs_made > trace.repairs.size())
+    std::printf("    and %llu more\n", static_cast<unsigned long long>(trace.repairs_made - trace.repairs.size()));
   return 0;
 }
 

@@ -1,9 +1,11 @@
 // bleedsim validate: check a scenario and say what a run of it would do.
 #include <algorithm>
 #include <cmath>
-#include <vector>
+#include <cstdint>
 #include <cstdio>
+#include <limits>
 #include <string>
+#include <vector>
 
 #include "cli/commands.h"
 #include "core/effects/cuts.h"
@@ -15,21 +17,45 @@
 #include "core/haptics/haptics.h"
 #include "core/haptics/trace_replay.h"
 #include "core/io/scenario.h"
+#include "core/io/trace_csv.h"
 #include "core/runtime/memory.h"
 #include "core/runtime/message_text.h"
 
 namespace bleedsim::cli {
 namespace {
 
+// The whole trace file, checked a line at a time as the run's reading is (the run reads only what it
+// plays): its samples, counted and not kept, and their span.
+void describe_trace(const Scenario& file) {
+  const InputFile& trace_file =
+      *std::find_if(file.files.begin(), file.files.end(), [](const InputFile& f) { return f.key == "haptics.trace"; });
+  TraceOptions whole = file.trace_options;
+  whole.keep_s = std::numeric_limits<double>::infinity();
+  std::uint64_t samples = 0;
+  double first_s = 0, last_s = 0;
+  const Trace trace = read_trace(trace_file, whole, [&](const TraceSample& s) {
+    if (samples++ == 0) first_s = s.t_s;
+    last_s = s.t_s;
+    return true;
+  });
+  std::printf("  trace      %s: %llu samples over %.3f s%s; the run reads the first %zu\n", trace.path.c_str(),
+              static_cast<unsigned long long>(samples), last_s - first_s,
+              trace.repairs_made == 0 ? ""
+                                      : (", " + std::to_string(trace.repairs_made) + " dropouts repaired").c_str(),
+              file.scene.trace->samples.size());
+}
+
 // The stylus: its contact parameters, and what replaying the trace over the run would do (the
 // haptic loop alone is cheap: no frame is computed).
-std::int64_t describe_haptics(const Scene& scene) {
+std::int64_t describe_haptics(const Scenario& file) {
+  const Scene& scene = file.scene;
   const HapticParams& h = *scene.haptics;
   const std::string tissue = scene.mesh ? "the tissue mesh (a proxy on its surface, force bounded by energy)"
                                          : "surface z = " + format_number(h.surface_z_mm) + " mm";
   std::printf("  haptics    %s; k %g N/m, b %g N·s/m, cap %g N; passive: k·T/2 + |b| = %g < %g N·s/m\n", tissue.c_str(),
               h.stiffness_N_per_m, h.damping_Ns_per_m, h.max_force_N, passivity_demand_Ns_per_m(h),
               h.device_damping_Ns_per_m);
+  describe_trace(file);
   const Trace& trace = *scene.trace;
   HapticLoop loop(scene);
   const std::int64_t ticks = scene.haptic_ticks_through_frame(scene.frame_count() - 1);
@@ -42,9 +68,6 @@ std::int64_t describe_haptics(const Scene& scene) {
     cuts += step.cut.has_value();
     peak_N = std::max(peak_N, step.record.force_N.norm());
   }
-  std::printf("  trace      %s: %zu samples over %.3f s%s\n", trace.path.c_str(), trace.samples.size(),
-              trace.samples.back().t_s - trace.samples.front().t_s,
-              trace.repairs.empty() ? "" : (", " + std::to_string(trace.repairs.size()) + " dropouts repaired").c_str());
   std::printf("  stylus     %lld ticks: in contact %lld, cutting %lld; %lld cuts; peak force %.3g N\n",
               static_cast<long long>(ticks), static_cast<long long>(contact), static_cast<long long>(cutting),
               static_cast<long long>(cuts), peak_N);
@@ -102,7 +125,7 @@ int validate_command(const std::string& scenario) {
   }
   std::printf("  cuts       %zu%s\n", scene.cuts.size(), scene.trace ? " scripted, and the stylus' (below)" : "");
   std::printf("  stages     %s\n", stages.c_str());
-  const std::int64_t stylus_cuts = scene.trace ? describe_haptics(scene) : 0;
+  const std::int64_t stylus_cuts = scene.trace ? describe_haptics(file) : 0;
   std::printf("%s", describe_effects(scene, resolved, outline(scene, stylus_cuts)).c_str());
   std::printf("  memory     %s\n", memory_line(scene, resolved, file.input_memory).c_str());
   std::printf("  output     %s (HDF5 %s, PNG %s)\n", out.dir.c_str(), out.hdf5 ? "on" : "off",

@@ -352,18 +352,17 @@ InputFile named_file(Scenario& s, const std::string& key, const std::string& wha
   return file;
 }
 
-// The trace the [haptics] table names.
+// The trace the [haptics] table names: the samples the run plays, up to the first past its last
+// haptic tick; the lines after it are not read (validate checks them: cli/validate_command.cpp).
 void load_named_trace(const Written& written, Scenario& s) {
-  const std::string path = named_file(s, "haptics.trace", "trace file", written.texts.at("trace")).path;
+  const InputFile file = named_file(s, "haptics.trace", "trace file", written.texts.at("trace"));
+  TraceOptions& options = s.trace_options;
   const auto gap = written.numbers.find("repair_gap_ms");
-  const double repair_gap_ms = gap == written.numbers.end() ? 0.0 : gap->second;
-  // Sized from its lines before it is read: a trace too large for this machine names the key.
-  try {
-    require_memory({trace_memory(path, "haptics.trace")}, available_host_memory(), "host");
-  } catch (const InputError& e) {
-    throw s.placed(e);
-  }
-  s.scene.trace = load_trace(path, TraceOptions{repair_gap_ms / 1000.0, {}});
+  options.max_repair_gap_s = gap == written.numbers.end() ? 0.0 : gap->second / 1000.0;
+  const Scene& scene = s.scene;
+  options.keep_s = double(scene.haptic_ticks_through_frame(scene.frame_count() - 1) - 1) / kHapticRate_hz;
+  s.scene.trace = load_trace(file, options);
+  s.input_memory.push_back(trace_memory(*s.scene.trace, file));
 }
 
 void read_haptics(Reader& r, const toml::table& root, Scenario& s) {

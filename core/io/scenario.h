@@ -9,6 +9,7 @@
 
 #include "core/io/output_spec.h"
 #include "core/io/scenario_tables.h"
+#include "core/io/trace_csv.h"
 #include "core/mesh/view_render.h"
 #include "core/runtime/input_error.h"
 #include "core/runtime/input_file.h"
@@ -31,6 +32,8 @@ struct Scenario {
   // The host memory reading each of them takes at the most (a trace's samples kept, a mesh's reading,
   // a texture's decoding), under its key, in the order read: what validate says beside the backend's.
   MemoryParts input_memory;
+  // How its trace was read, the run's part kept (validate reads the whole file with the same).
+  TraceOptions trace_options;
 
   // Where `key` was written (the file alone when it was not).
   SourcePlace place_of(const std::string& key) const;

@@ -1,71 +1,33 @@
 #include "core/io/trace_csv.h"
 
 #include <algorithm>
+#include <array>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
-#include <filesystem>
 #include <fstream>
 #include <istream>
+#include <map>
+#include <optional>
 #include <sstream>
 #include <utility>
 #include <vector>
 
-#include "core/io/text_file.h"
 #include "core/runtime/count.h"
 #include "core/runtime/message_text.h"
 
 namespace bleedsim {
 namespace {
 
-namespace fs = std::filesystem;
-
 const char* const kColumns[] = {"t_s", "x_m", "y_m", "z_m", "buttons", "fx_N", "fy_N", "fz_N"};
 const std::string kHeader = "t_s,x_m,y_m,z_m,buttons";
 const std::string kForceHeader = "t_s,x_m,y_m,z_m,buttons,fx_N,fy_N,fz_N";
 const char* const kRequired[] = {"device", "frame", "rate_hz"};
 
-// What reading a trace holds, per line of its text: a sample, its line number and, while the
-// spacing is checked, its interval. The metadata keys are few; each is held with its line's text.
+// A trace's metadata keys are few; a file with more is not a trace.
 constexpr std::size_t kMaxMetadataKeys = 1000;
-constexpr std::size_t kBytesPerLine = sizeof(TraceSample) + sizeof(int) + sizeof(double);
-constexpr std::size_t kBytesPerKey = 128;  // a map node and two short strings
-
-// The lines of a text, and its longest (which std::getline holds whole), counted in one pass of a
-// buffer at a time.
-struct TextShape {
-  std::uint64_t lines = 1;
-  std::uint64_t longest = 0;
-};
-
-TextShape shape_of(std::istream& in) {
-  TextShape shape;
-  std::uint64_t current = 0;
-  std::vector<char> buffer(1 << 16);
-  while (in.read(buffer.data(), std::streamsize(buffer.size())) || in.gcount() > 0) {
-    for (std::streamsize i = 0; i < in.gcount(); ++i) {
-      if (buffer[std::size_t(i)] != '\n') {
-        ++current;
-        continue;
-      }
-      ++shape.lines;
-      shape.longest = std::max(shape.longest, current);
-      current = 0;
-    }
-  }
-  shape.longest = std::max(shape.longest, current);
-  return shape;
-}
-
-MemoryPart memory_for(const TextShape& shape, const std::string& key) {
-  return {key, "a trace of " + std::to_string(shape.lines) + " lines",
-          Count(shape.lines) * kBytesPerLine +
-              Count(std::min<std::uint64_t>(shape.lines, kMaxMetadataKeys)) * (Count(shape.longest) + kBytesPerKey)};
-}
-
-std::size_t room_in(const TraceOptions& options) { return options.memory_room.value_or(available_host_memory()); }
 
 // A number for a human: four significant digits (rates, durations).
 std::string rounded(double value) { return format_significant(value, 4); }
@@ -137,8 +99,9 @@ class Parser {
     throw InputError(SourcePlace{trace_.path, line, column}, key, message);
   }
 
-  // Reads the lines of `in` one at a time: only the samples are kept, never the whole text.
-  Trace run(std::istream& in) {
+  // Reads the lines of `in` one at a time, handing each sample to `take` until it wants no more:
+  // only a line and the rate's window are held, never the whole text.
+  Trace run(std::istream& in, const TakeSample& take) {
     std::string line;
     int number = 0;
     bool any_text = false;
@@ -160,19 +123,15 @@ class Parser {
     read_header(line);
     check_metadata();
 
-    // The samples.
-    while (next_line(in, line, number)) {
+    // The samples, until `take` wants no more.
+    bool wanted = true;
+    while (wanted && next_line(in, line, number)) {
       if (blank(line) || line[line.find_first_not_of(" \t")] == '#') continue;
-      read_sample(line, number);
+      wanted = accept(read_sample(line, number), number, take);
     }
-    if (trace_.samples.empty()) fail(header_line_, 0, "samples", "no samples after the header");
-    check_spacing();
+    if (samples_read_ == 0) fail(header_line_, 0, "samples", "no samples after the header");
+    check_rate();
     return std::move(trace_);
-  }
-
-  void reserve(std::size_t lines) {
-    trace_.samples.reserve(lines);
-    lines_.reserve(lines);
   }
 
  private:
@@ -180,11 +139,18 @@ class Parser {
     return std::all_of(line.begin(), line.end(), [](char c) { return is_space(c); });
   }
 
-  // The next line of `in` without its end (LF or CR LF) as `line`, numbered from 1. A UTF-8
-  // byte-order mark before the first line is skipped (editors write one); a UTF-16 one, or a
-  // carriage return that ends a line alone (old Mac line ends), is refused at its place.
-  bool next_line(std::istream& in, std::string& line, int& number) const {
-    if (!std::getline(in, line)) return false;
+  // The next line of `in` without its end (LF or CR LF) as `line`, numbered from 1, refused past
+  // kTraceMaxLineBytes. A UTF-8 byte-order mark before the first line is skipped (editors write
+  // one); a UTF-16 one, or a carriage return that ends a line alone (old Mac line ends), is refused
+  // at its place.
+  bool next_line(std::istream& in, std::string& line, int& number) {
+    in.getline(buffer_.data(), std::streamsize(buffer_.size()));
+    const std::size_t got = std::size_t(in.gcount());
+    if (in.fail() && got == 0) return false;  // the end of the text
+    if (in.fail() && !in.eof())
+      fail(number + 1, int(got), "", "the line is longer than " + std::to_string(kTraceMaxLineBytes) +
+                                         " characters: a trace's lines are its metadata, its header and its samples");
+    line.assign(buffer_.data(), in.eof() ? got : got - 1);  // without the LF that ended it
     ++number;
     if (number == 1) {
       if (line.compare(0, 3, "\xEF\xBB\xBF") == 0) line.erase(0, 3);
@@ -199,7 +165,6 @@ class Parser {
                                     "(old Mac line ends? convert them, e.g. with tr '\\r' '\\n')");
     return true;
   }
-
   void read_metadata(const std::string& line, int number) {
     // "# key: value"; a '#' line of any other shape is a comment.
     const std::size_t hash = line.find('#');
@@ -303,7 +268,7 @@ class Parser {
              format_number(high * 1000) + " mm)");
   }
 
-  void read_sample(const std::string& line, int number_) {
+  TraceSample read_sample(const std::string& line, int number_) const {
     const std::vector<Field> f = split_fields(line);
     const std::size_t want = trace_.has_force ? 8 : 5;
     if (f.size() != want)
@@ -312,10 +277,10 @@ class Parser {
                std::to_string(f.size()));
     TraceSample s;
     s.t_s = number(f[0], number_, "t_s");
-    if (!trace_.samples.empty() && !(s.t_s > trace_.samples.back().t_s))
+    if (samples_read_ > 0 && !(s.t_s > last_.t_s))
       fail(number_, f[0].column, "t_s",
            "time must be strictly increasing: " + format_number(s.t_s) + " s is not after " +
-               format_number(trace_.samples.back().t_s) + " s on line " + std::to_string(lines_.back()));
+               format_number(last_.t_s) + " s on line " + std::to_string(last_line_));
     s.x_m = number(f[1], number_, "x_m");
     s.y_m = number(f[2], number_, "y_m");
     s.z_m = number(f[3], number_, "z_m");
@@ -344,129 +309,147 @@ class Parser {
              "the force (" + f[5].text + ", " + f[6].text + ", " + f[7].text + ") N has magnitude " +
                  rounded(magnitude) + " N, over the Falcon's " + format_number(kFalconMaxForce_N) + " N maximum");
     }
-    trace_.samples.push_back(s);
-    lines_.push_back(number_);
+    return s;
   }
 
-  // The median interval must match rate_hz; a longer interval is a gap, refused or repaired.
-  void check_spacing() {
-    const std::vector<TraceSample>& s = trace_.samples;
+  // A sample read: the dropout before it repaired (or refused), then it is handed to `take`.
+  // Whether more samples are wanted.
+  bool accept(const TraceSample& s, int line, const TakeSample& take) {
+    bool wanted = true;
+    if (samples_read_++ > 0) {
+      const double gap = s.t_s - last_.t_s;
+      if (intervals_.size() < kTraceRateWindow) intervals_.push_back(gap);
+      if (gap > 1.5 / trace_.rate_hz) wanted = bridge(s, gap, line, take);
+    }
+    if (intervals_.size() == kTraceRateWindow) check_rate();
+    wanted = wanted && !refused_ && take(s);
+    last_ = s;
+    last_line_ = line;
+    // A dropout refused before the rate is checked waits for it: a wrong rate_hz explains it better.
+    return wanted || (refused_ && !rate_checked_);
+  }
+
+  // The median interval must match rate_hz; then a dropout refused before is.
+  void check_rate() {
+    if (rate_checked_) return;
+    rate_checked_ = true;
     const double period = 1.0 / trace_.rate_hz;
     const auto rate_line = meta_lines_.at("rate_hz");
-    if (s.size() >= 2) {
-      std::vector<double> intervals;
-      for (std::size_t k = 1; k < s.size(); ++k) intervals.push_back(s[k].t_s - s[k - 1].t_s);
-      std::nth_element(intervals.begin(), intervals.begin() + intervals.size() / 2, intervals.end());
-      double median = intervals[intervals.size() / 2];
-      if (intervals.size() % 2 == 0)
-        median = (median + *std::max_element(intervals.begin(), intervals.begin() + intervals.size() / 2)) / 2;
+    if (!intervals_.empty()) {
+      std::vector<double>& dt = intervals_;
+      std::nth_element(dt.begin(), dt.begin() + dt.size() / 2, dt.end());
+      double median = dt[dt.size() / 2];
+      if (dt.size() % 2 == 0) median = (median + *std::max_element(dt.begin(), dt.begin() + dt.size() / 2)) / 2;
+      trace_.median_interval_s = median;
       if (std::abs(median - period) > 0.1 * period)
         fail(rate_line.first, rate_line.second, "metadata.rate_hz",
              "the samples are " + rounded(1.0 / median) + " Hz apart (median interval " + rounded(median * 1000) +
                  " ms), not the " + format_number(trace_.rate_hz) + " Hz the header states");
     }
+    intervals_ = {};
+    if (refused_) throw *refused_;
+  }
 
-    // The gaps, each refused or counted, before any memory is taken for their repairs.
-    std::uint64_t fills = 0;
-    std::size_t first_gap = 0;
-    for (std::size_t k = 1; k < s.size(); ++k) {
-      const double gap = s[k].t_s - s[k - 1].t_s;
-      if (!(gap > 1.5 * period)) continue;
-      if (!(options_.max_repair_gap_s > 0 && gap <= options_.max_repair_gap_s))
-        fail(lines_[k], 1, "t_s",
-             "a " + rounded(gap * 1000) + " ms dropout after t = " + format_fixed(s[k - 1].t_s, 4) + " s (between line " +
-                 std::to_string(lines_[k - 1]) + " and line " + std::to_string(lines_[k]) +
-                 "): the samples must be at most 1.5 intervals (" + rounded(1.5 * period * 1000) + " ms) apart at " +
-                 format_number(trace_.rate_hz) + " Hz" +
-                 (options_.max_repair_gap_s > 0
-                      ? "; repairs are allowed up to " + rounded(options_.max_repair_gap_s * 1000) + " ms"
-                      : std::string()));
-      fills += std::uint64_t(std::max(1L, std::lround(gap / period)) - 1);
-      if (first_gap == 0) first_gap = k;
+  // The samples a dropout from the last sample to `b` lacks, at the nominal rate, interpolated and
+  // handed to `take` in turn; or, when no repair may fill it, its refusal. Whether more are wanted.
+  bool bridge(const TraceSample& b, double gap, int line, const TakeSample& take) {
+    const TraceSample a = last_;
+    const double period = 1.0 / trace_.rate_hz;
+    const std::string what = "a " + rounded(gap * 1000) + " ms dropout after t = " + format_fixed(a.t_s, 4) + " s";
+    if (!(options_.max_repair_gap_s > 0 && gap <= options_.max_repair_gap_s)) {
+      const InputError refusal(
+          SourcePlace{trace_.path, line, 1}, "t_s",
+          what + " (between line " + std::to_string(last_line_) + " and line " + std::to_string(line) +
+              "): the samples must be at most 1.5 intervals (" + rounded(1.5 * period * 1000) + " ms) apart at " +
+              format_number(trace_.rate_hz) + " Hz" +
+              (options_.max_repair_gap_s > 0 ? "; repairs are allowed up to " + rounded(options_.max_repair_gap_s * 1000) + " ms"
+                                             : std::string()));
+      if (rate_checked_) throw refusal;
+      if (!refused_) refused_ = refusal;
+      return true;
     }
-    if (first_gap == 0) return;
-    const Count need = (Count(s.size()) + fills) * sizeof(TraceSample);
-    const std::size_t room = room_in(options_);
-    if (need > Count(room))
-      fail(lines_[first_gap], 1, "t_s",
-           "repairing the dropouts adds up to " + std::to_string(fills) + " samples: " +
-               human_bytes(need.as_double()) + " of host memory, but only " + human_bytes(double(room)) +
-               " is available");
-
-    std::vector<TraceSample> repaired;
-    repaired.reserve(need.to<std::size_t>() / sizeof(TraceSample));
-    for (std::size_t k = 0; k < s.size(); ++k) {
-      if (k > 0) {
-        const TraceSample& a = s[k - 1];
-        const TraceSample& b = s[k];
-        const double gap = b.t_s - a.t_s;
-        if (gap > 1.5 * period) {
-          const std::string what = "a " + rounded(gap * 1000) + " ms dropout after t = " + format_fixed(a.t_s, 4) + " s";
-          const long missing = std::max(1L, std::lround(gap / period)) - 1;
-          long filled = 0;
-          for (long m = 1; m <= missing; ++m) {
-            const double t = a.t_s + double(m) * period;
-            if (!(t < b.t_s)) break;
-            const double u = (t - a.t_s) / gap;
-            TraceSample f;
-            f.t_s = t;
-            f.x_m = a.x_m + u * (b.x_m - a.x_m);
-            f.y_m = a.y_m + u * (b.y_m - a.y_m);
-            f.z_m = a.z_m + u * (b.z_m - a.z_m);
-            f.buttons = a.buttons;
-            f.fx_N = a.fx_N + u * (b.fx_N - a.fx_N);
-            f.fy_N = a.fy_N + u * (b.fy_N - a.fy_N);
-            f.fz_N = a.fz_N + u * (b.fz_N - a.fz_N);
-            repaired.push_back(f);
-            ++filled;
-          }
-          trace_.repairs.push_back(trace_.path + ":" + std::to_string(lines_[k - 1]) + ": " + what + " filled with " +
-                                   std::to_string(filled) + " interpolated sample" + (filled == 1 ? "" : "s"));
-        }
-      }
-      repaired.push_back(s[k]);
+    const long missing = std::max(1L, std::lround(gap / period)) - 1;
+    long filled = 0;
+    bool wanted = true;
+    for (long m = 1; m <= missing && wanted; ++m) {
+      const double t = a.t_s + double(m) * period;
+      if (!(t < b.t_s)) break;
+      const double u = (t - a.t_s) / gap;
+      TraceSample f;
+      f.t_s = t;
+      f.x_m = a.x_m + u * (b.x_m - a.x_m);
+      f.y_m = a.y_m + u * (b.y_m - a.y_m);
+      f.z_m = a.z_m + u * (b.z_m - a.z_m);
+      f.buttons = a.buttons;
+      f.fx_N = a.fx_N + u * (b.fx_N - a.fx_N);
+      f.fy_N = a.fy_N + u * (b.fy_N - a.fy_N);
+      f.fz_N = a.fz_N + u * (b.fz_N - a.fz_N);
+      wanted = refused_ || take(f);
+      ++filled;
     }
-    trace_.samples = std::move(repaired);
+    ++trace_.repairs_made;
+    if (trace_.repairs.size() < kTraceRepairsDescribed)
+      trace_.repairs.push_back(trace_.path + ":" + std::to_string(last_line_) + ": " + what + " filled with " +
+                               std::to_string(filled) + " interpolated sample" + (filled == 1 ? "" : "s"));
+    return wanted;
   }
 
   TraceOptions options_;
   Trace trace_;
   std::map<std::string, std::pair<int, int>> meta_lines_;  // key -> (line, value column)
-  std::vector<int> lines_;                                 // each sample's line
+  std::array<char, kTraceMaxLineBytes + 1> buffer_{};      // a line and getline's NUL
   int header_line_ = 0;
+  std::uint64_t samples_read_ = 0;  // as written, repairs not counted
+  TraceSample last_;                // the last sample read, and its line
+  int last_line_ = 0;
+  std::vector<double> intervals_;         // the first kTraceRateWindow, for the rate's median
+  bool rate_checked_ = false;
+  std::optional<InputError> refused_;     // the first dropout refused while the rate was unchecked
 };
 
-// Sizes the trace from its text before reading it, then reads it line by line.
-Trace read_trace(std::istream& in, const std::string& path, const TraceOptions& options) {
-  const TextShape shape = shape_of(in);
-  in.clear();
-  in.seekg(0);
-  const MemoryPart need = memory_for(shape, "");
-  const std::size_t room = room_in(options);
-  if (need.bytes > Count(room))
-    throw InputError(SourcePlace{path, 0, 0}, "",
-                     need.what + " needs up to " + human_bytes(need.bytes.as_double()) +
-                         " of host memory to read, but only " + human_bytes(double(room)) + " is available");
-  Parser parser(path, options);
-  parser.reserve(shape.lines);
-  return parser.run(in);
+// Keeps the samples up to the first past options.keep_s, in a store whose growth is counted, the
+// new store beside the old, before it is made.
+Trace keep_samples(std::istream& in, const InputFile& file, const TraceOptions& options) {
+  std::vector<TraceSample> kept;
+  const auto take = [&](const TraceSample& s) {
+    if (kept.size() == kept.capacity()) {
+      const std::size_t grown = std::max<std::size_t>(1024, 2 * kept.capacity());
+      const Count need = (Count(kept.capacity()) + grown) * sizeof(TraceSample);
+      const std::size_t room = options.memory_room.value_or(available_host_memory());
+      if (need > Count(room))
+        throw unreadable(file, "keeping its samples up to t = " + format_fixed(s.t_s, 4) + " s, " +
+                                   std::to_string(kept.size() + 1) + " of them, needs " + human_bytes(need.as_double()) +
+                                   " of host memory, but only " + human_bytes(double(room)) + " is available");
+      kept.reserve(grown);
+    }
+    kept.push_back(s);
+    return !(s.t_s - kept.front().t_s > options.keep_s);
+  };
+  Trace trace = Parser(file.path, options).run(in, take);
+  trace.samples = std::move(kept);
+  return trace;
 }
 
 }  // namespace
 
+Trace read_trace(const InputFile& file, const TraceOptions& options, const TakeSample& take) {
+  std::ifstream in = open_input(file);
+  return Parser(file.path, options).run(in, take);
+}
+
+Trace load_trace(const InputFile& file, const TraceOptions& options) {
+  std::ifstream in = open_input(file);
+  return keep_samples(in, file, options);
+}
+
 Trace parse_trace(const std::string& text, const std::string& path, const TraceOptions& options) {
   std::istringstream in(text);
-  return read_trace(in, path, options);
+  return keep_samples(in, InputFile{path, "trace file"}, options);
 }
 
-Trace load_trace(const std::string& path, const TraceOptions& options) {
-  std::ifstream in = open_text_file(path, "trace");
-  return read_trace(in, path, options);
-}
-
-MemoryPart trace_memory(const std::string& path, const std::string& key) {
-  std::ifstream in = open_text_file(path, "trace");
-  return memory_for(shape_of(in), key);
+MemoryPart trace_memory(const Trace& trace, const InputFile& file) {
+  return {file.key, "the " + std::to_string(trace.samples.size()) + " samples kept of trace '" + file.path + "'",
+          Count(trace.samples.capacity()) * sizeof(TraceSample)};
 }
 
 }  // namespace bleedsim

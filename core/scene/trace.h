@@ -22,7 +22,9 @@ struct Trace {
   double rate_hz = 0;                            // metadata rate_hz, checked against the samples
   bool has_force = false;                        // the header has fx_N,fy_N,fz_N
   std::vector<TraceSample> samples;              // time strictly increasing, repairs included
-  std::vector<std::string> repairs;              // one human-readable line per repair made
+  std::vector<std::string> repairs;              // one human-readable line for each of the first repairs
+  std::uint64_t repairs_made = 0;                // every repair, described or not
+  double median_interval_s = 0;                  // of the intervals rate_hz was checked against
 };
 
 // The Falcon's workspace in libnifalcon's device frame (metres) and its force limit.

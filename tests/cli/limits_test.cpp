@@ -1,7 +1,8 @@
 // Limits that hold (issue 13, items 2 and 5; issue 38, item 13): sizes are counted before anything
 // narrows them, and every input's memory — the run's, a texture's, a mesh's, a trace's — is counted
-// before it is read or allocated, the refusal naming the file and the key that sets the size. Each
-// case here ran out of memory, or on with a wrong size, before.
+// before it is read or allocated, the refusal naming the file and the key that sets the size; a
+// trace is read only as far as the run plays it. Each case here ran out of memory, or on with a
+// wrong size, before.
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -91,22 +92,53 @@ TEST(Limits, ARingTooLargeForMemoryIsRefusedAtItsCapacity) {
                      "ulimit -v 12000000;");
 }
 
-// Item 5: a trace is sized from its lines before it is read. 2.5 million samples take ~190 MB as
-// loaded; under a 150 MB limit the whole text and its lines used to end in a bare std::bad_alloc.
-TEST(Limits, ATraceTooLargeForMemoryIsRefusedAtItsKey) {
+// A trace of `samples` samples 1 ms apart, one per line, as `path`.
+void write_long_trace(const fs::path& path, int samples) {
+  std::ofstream trace(path);
+  trace << "# device: Novint Falcon\n# frame: libnifalcon\n# rate_hz: 1000\nt_s,x_m,y_m,z_m,buttons\n";
+  char line[64];
+  for (int n = 0; n < samples; ++n) {
+    std::snprintf(line, sizeof line, "%d.%03d,0,0,0.1,0\n", n / 1000, n % 1000);
+    trace << line;
+  }
+}
+
+// Issue 38, item 13: a run reads only what it plays of a trace. 2.5 million samples take 160 MB
+// kept; under a 150 MB limit a 0.2 s run of them was refused (and a longer limit ran out at 744 MB
+// for 5.8 million): now it reads 202 lines, and validate checks all the rest a line at a time.
+TEST(Limits, AShortRunOverALongTraceReadsOnlyWhatItPlays) {
   BLEEDSIM_SKIP_UNLESS_ADDRESS_SPACE_CAN_BE_LIMITED();
   const fs::path dir = scratch_folder();
-  {
-    std::ofstream trace(dir / "long.csv");
-    trace << "# device: Novint Falcon\n# frame: libnifalcon\n# rate_hz: 1000\nt_s,x_m,y_m,z_m,buttons\n";
-    char line[64];
-    for (int n = 0; n < 2'500'000; ++n) {
-      std::snprintf(line, sizeof line, "%d.%03d,0,0,0.1,0\n", n / 1000, n % 1000);
-      trace << line;
-    }
-  }
-  expect_both_refuse(dir, kScene + "[haptics]\ntrace = \"long.csv\"\n",
-                     {"s.toml:8:9: haptics.trace: this scene needs", "for a trace of 2500005 lines", "host memory"},
+  write_long_trace(dir / "long.csv", 2'500'000);
+  write_text(dir / "s.toml", kScene + "[haptics]\ntrace = \"long.csv\"\n");
+  const std::string limit = "ulimit -v 150000;";
+  const CliResult validated = run_cli("validate '" + (dir / "s.toml").string() + "'", limit);
+  EXPECT_EQ(validated.exit_code, 0) << validated.output;
+  EXPECT_NE(validated.output.find("long.csv: 2500000 samples over 2499.999 s; the run reads the first 202\n"),
+            std::string::npos)
+      << validated.output;
+  EXPECT_NE(validated.output.find("64.00 KiB for the 202 samples kept of trace '"), std::string::npos)
+      << "validate counts what the run keeps: a store of 1024 samples\n" << validated.output;
+  const CliResult ran = run_cli("run '" + (dir / "s.toml").string() + "' --backend cpu -j 1 --output-threads 1 --out '" +
+                                (dir / "out").string() + "'", limit);
+  EXPECT_EQ(ran.exit_code, 0) << ran.output;
+  EXPECT_NE(ran.output.find("long.csv: 202 samples over 0.201 s through the 1 kHz haptic loop (read as far as the "
+                            "run goes)"),
+            std::string::npos)
+      << ran.output;
+}
+
+// The samples a run plays are counted as they are kept: a 2500 s run over the same trace needs them
+// all, and is refused at its key, naming the file, before its store outgrows the room.
+TEST(Limits, ATraceWhosePlayedPartIsTooLargeIsRefusedAtItsKey) {
+  BLEEDSIM_SKIP_UNLESS_ADDRESS_SPACE_CAN_BE_LIMITED();
+  const fs::path dir = scratch_folder();
+  write_long_trace(dir / "long.csv", 2'500'000);
+  std::string scene = kScene;
+  scene.replace(scene.find("duration_s = 0.2"), 16, "duration_s = 2500");
+  expect_both_refuse(dir, scene + "[haptics]\ntrace = \"long.csv\"\n",
+                     {"s.toml:8:9: haptics.trace: cannot read trace file '", "long.csv': keeping its samples up to t = ",
+                      "of host memory, but only"},
                      "ulimit -v 150000;");
 }
 

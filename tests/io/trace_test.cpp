@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -147,20 +148,20 @@ TEST(TraceParse, LoadsAFileAndRefusesAMissingOne) {
   fs::create_directories(dir);
   const std::string file = (dir / "t.csv").string();
   std::ofstream(file) << kBase;
-  const Trace t = load_trace(file);
+  const Trace t = load_trace(InputFile{file, "trace file"});
   EXPECT_EQ(t.path, file);
   EXPECT_EQ(t.samples.size(), 5u);
   EXPECT_EQ(t.metadata.at("origin"), "synthetic");
   const std::string missing = (dir / "nope.csv").string();
   try {
-    load_trace(missing);
+    load_trace(InputFile{missing, "trace file"});
     ADD_FAILURE() << "a missing file was read";
   } catch (const InputError& e) {
     EXPECT_EQ(e.where().file, missing);
     EXPECT_EQ(e.where().line, 0);
     EXPECT_NE(std::string(e.what()).find("cannot read trace file"), std::string::npos) << e.what();
   }
-  EXPECT_THROW(load_trace(dir.string()), InputError);
+  EXPECT_THROW(load_trace(InputFile{dir.string(), "trace file"}), InputError);
   fs::remove_all(dir);
 }
 
@@ -372,30 +373,89 @@ TEST(TraceEncoding, CarriageReturnsAloneAreLocatedAtTheFirst) {
   EXPECT_EQ(times_of(parse_trace(crlf, kPath)), times_of(parse_trace(kBase, kPath)));
 }
 
-// ---- Memory (issue 13, item 5) -----------------------------------------------------------------
+// ---- Memory (issue 13, item 5; issue 38, item 13) ---------------------------------------------
 
-TEST(TraceMemory, ATraceIsSizedFromItsLinesBeforeAnyIsRead) {
-  // 10 lines hold 10 samples at most: their memory, and the metadata's, is known before reading.
-  TraceOptions options;
-  options.memory_room = 1000;  // bytes: far less than ten samples and their bookkeeping take
-  EXPECT_TRUE(refused_at(kBase, 0, "", {"a trace of 11 lines needs up to", "of host memory to read, but only 1000 B"},
-                         -1, options));
-  options.memory_room = 1 << 20;
-  TraceOptions unlimited;
-  EXPECT_EQ(times_of(parse_trace(kBase, kPath, options)), times_of(parse_trace(kBase, kPath, unlimited)));
+// kBase's header, then `count` samples 1 ms apart from t = 0, one line each.
+std::string long_trace(int count, const std::string& header = kBase.substr(0, kBase.find("0.000,"))) {
+  std::string text = header;
+  char line[64];
+  for (int n = 0; n < count; ++n) {
+    std::snprintf(line, sizeof line, "%d.%03d,0.0100,-0.0050,0.1200,0\n", n / 1000, n % 1000);
+    text += line;
+  }
+  return text;
 }
 
-TEST(TraceMemory, RepairsAreCountedBeforeTheyAreMade) {
-  // A 900 ms dropout is repaired into 899 samples: 64 bytes each.
-  const std::string far = with_line(with_line(with_line(kGap, 8, "0.902,0.0140,-0.0020,0.1080,0,4,-2,0.8"), 9,
-                                               "0.903,0.0150,-0.0020,0.1080,0,4,-2,0.8"),
-                                     10, "0.904,0.0160,-0.0020,0.1080,0,4,-2,0.8");
+TEST(TraceMemory, TheStoreOfSamplesIsCountedBeforeItGrows) {
+  // The store grows from 1024 samples of 64 bytes: 2000 samples need it grown to 2048, beside the
+  // 1024 held.
+  const std::string text = long_trace(2000);
   TraceOptions options;
-  options.max_repair_gap_s = 1.0;
-  options.memory_room = 40000;  // enough to read ten lines, not for 905 samples
-  EXPECT_TRUE(refused_at(far, 8, "t_s", {"repairing the dropouts adds up to 899 samples", "but only"}, 1, options));
+  options.memory_room = 150000;
+  EXPECT_TRUE(refused_at(text, 0, "", {"cannot read trace file: keeping its samples up to t = 1.0240 s, 1025 of them, "
+                                       "needs 192.00 KiB of host memory, but only 146.48 KiB is available"},
+                         -1, options));
+  options.memory_room = 3072 * 64;
+  EXPECT_EQ(parse_trace(text, kPath, options).samples.size(), 2000u);
+}
+
+TEST(TraceMemory, RepairsAreCountedBeforeTheyAreKept) {
+  // A 2.9 s dropout is repaired into 2899 samples: past the first 1024 the store must grow.
+  const std::string far = with_line(with_line(with_line(kGap, 8, "2.902,0.0140,-0.0020,0.1080,0,4,-2,0.8"), 9,
+                                               "2.903,0.0150,-0.0020,0.1080,0,4,-2,0.8"),
+                                     10, "2.904,0.0160,-0.0020,0.1080,0,4,-2,0.8");
+  TraceOptions options;
+  options.max_repair_gap_s = 3.0;
+  options.memory_room = 100000;  // 1024 samples' store, not a grown one beside it
+  EXPECT_TRUE(refused_at(far, 0, "", {"keeping its samples up to t = 1.0240 s, 1025 of them", "but only"}, -1, options));
   options.memory_room.reset();
-  EXPECT_EQ(parse_trace(far, kPath, options).samples.size(), 905u);
+  EXPECT_EQ(parse_trace(far, kPath, options).samples.size(), 2905u);
+}
+
+TEST(TraceStream, KeepsTheSamplesUpToTheFirstPastKeepAndReadsNoFurther) {
+  // 5 s of samples, then a line that is no sample: a run of 0.2 s keeps 202 (0 to 0.201 s) and
+  // never meets it; reading the whole file does.
+  const std::string text = long_trace(5000) + "not,a,sample\n";
+  TraceOptions options;
+  options.keep_s = 0.2;
+  const Trace t = parse_trace(text, kPath, options);
+  ASSERT_EQ(t.samples.size(), 202u);
+  EXPECT_EQ(t.samples.back().t_s, 0.201);
+  EXPECT_LE(t.samples.capacity(), 1024u);
+  EXPECT_TRUE(refused_at(text, 5006, "columns", {"expected 5 values"}));
+}
+
+TEST(TraceStream, ReadTraceHandsOnEverySampleAndKeepsNone) {
+  const fs::path dir = fs::temp_directory_path() / ("bleedsim-trace-stream-" + std::to_string(getpid()));
+  fs::create_directories(dir);
+  const std::string file = (dir / "t.csv").string();
+  std::ofstream(file) << long_trace(30000);
+  std::size_t seen = 0;
+  const Trace t = read_trace(InputFile{file, "trace file"}, {}, [&seen](const TraceSample& s) {
+    EXPECT_EQ(s.buttons, 0);
+    return ++seen > 0;
+  });
+  EXPECT_EQ(seen, 30000u);
+  EXPECT_TRUE(t.samples.empty());
+  EXPECT_NEAR(t.median_interval_s, 0.001, 1e-12) << "of the first " << kTraceRateWindow << " intervals";
+  fs::remove_all(dir);
+}
+
+TEST(TraceStream, TheRateIsCheckedBeforeADropoutInItsWindow) {
+  // Samples 2 ms apart, stated as 1000 Hz: every interval is a dropout, but the rate explains them.
+  std::string text = kBase.substr(0, kBase.find("0.000,"));
+  for (int n = 0; n < 20; ++n) text += "0.0" + std::to_string(10 + 2 * n) + ",0.0100,-0.0050,0.1200,0\n";
+  EXPECT_TRUE(refused_at(text, 3, "metadata.rate_hz", {"the samples are 500 Hz apart (median interval 2 ms)"}));
+  // Past the window a dropout is refused where it is.
+  const std::string late = long_trace(int(kTraceRateWindow) + 10) + "15.000,0.0100,-0.0050,0.1200,0\n";
+  EXPECT_TRUE(refused_at(late, int(kTraceRateWindow) + 16, "t_s", {"dropout after t = 10.0090 s"}));
+}
+
+TEST(TraceStream, ALineLongerThanTheCapIsRefusedAtIt) {
+  const std::string text = with_line(kBase, 4, "# origin: " + std::string(kTraceMaxLineBytes, 'x'));
+  EXPECT_TRUE(refused_at(text, 4, "", {"the line is longer than 4096 characters"}));
+  // A line of exactly the cap is read.
+  EXPECT_NO_THROW(parse_trace(with_line(kBase, 4, "# origin: " + std::string(kTraceMaxLineBytes - 10, 'x')), kPath));
 }
 
 }  // namespace
