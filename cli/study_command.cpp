@@ -7,7 +7,6 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -20,6 +19,7 @@
 #include "cli/output_files.h"
 #include "cli/output_folder.h"
 #include "cli/progress.h"
+#include "cli/study_description.h"
 #include "core/runtime/build_info.h"
 #include "core/runtime/input_error.h"
 #include "core/runtime/input_file.h"
@@ -35,34 +35,6 @@ namespace bleedsim::cli {
 namespace {
 
 namespace fs = std::filesystem;
-
-// "substeps=10,20,40" as a knob and its levels, each the whole of its place between the commas, a
-// decimal number as std::from_chars reads it (strtod would take "0x10" and " 10"). What the levels
-// must be beside (in range, each once) the study checks.
-KnobLevels parse_knob(const std::string& text) {
-  const std::size_t equals = text.find('=');
-  const std::string name = text.substr(0, equals);
-  const Knob* knob = find_knob(name);
-  if (!knob) throw InputError({}, "--knob", unknown_knob_message(name));
-  if (equals == std::string::npos || equals + 1 == text.size())
-    throw InputError({}, "--knob", "write it as " + name + "=v1,v2,... (got '" + text + "')");
-  const std::string list = text.substr(equals + 1), key = "--knob " + name;
-  KnobLevels levels{knob, {}};
-  for (std::size_t at = 0; at <= list.size();) {
-    const std::size_t comma = std::min(list.find(',', at), list.size());
-    const std::string level = "level " + std::to_string(levels.levels.size() + 1);
-    const std::string value = list.substr(at, comma - at);
-    if (value.empty()) throw InputError({}, key, level + " of '" + list + "' is empty: write numbers between the commas");
-    double v = 0;
-    const auto [end, error] = std::from_chars(value.data(), value.data() + value.size(), v);
-    if (error == std::errc::invalid_argument || end != value.data() + value.size())
-      throw InputError({}, key, level + ", '" + value + "', is not a decimal number");
-    if (error == std::errc::result_out_of_range) throw InputError({}, key, level + ", '" + value + "', is out of a double's range");
-    levels.levels.push_back(v);
-    at = comma + 1;
-  }
-  return levels;
-}
 
 std::vector<BackendKind> backends_for(const std::string& which) {
   if (which == "cpu") return {BackendKind::cpu};
@@ -130,54 +102,6 @@ void print_results(const Study& study, const StudyResult& result) {
                 ladder.per_metric[primary].fit.statement.c_str());
   }
   std::printf("reference (%s): %s\n", study.reference_description().c_str(), result.check.verdict.c_str());
-}
-
-// What a shard carries so that `merge` can build the same study from any folder: the scenario's text
-// and its absolute path (which the files it names are found beside), the study's options, the
-// backends as they were resolved (a merge needs no device).
-constexpr std::uint32_t kStudyDescriptionVersion = 2;
-
-std::vector<std::uint8_t> describe(const Scenario& scenario, const StudyOptions& options, const StudySpec& spec) {
-  ByteWriter out;
-  out.u32(kStudyDescriptionVersion);
-  out.text(fs::absolute(scenario.path).lexically_normal().string());
-  out.text(scenario.text);
-  out.u32(std::uint32_t(options.knobs.size()));
-  for (const std::string& knob : options.knobs) out.text(knob);
-  out.u32(std::uint32_t(spec.backends.size()));
-  for (const BackendKind backend : spec.backends) out.u32(std::uint32_t(backend));
-  out.u32(spec.duration_s ? 1u : 0u);
-  out.f64(spec.duration_s.value_or(0.0));
-  out.i32(spec.seeds);
-  out.i32(spec.cpu_threads);
-  return out.take();
-}
-
-struct DescribedStudy {
-  std::string scenario_path;
-  std::string scenario_text;
-  StudySpec spec;
-};
-
-DescribedStudy read_description(const std::vector<std::uint8_t>& bytes, const std::string& shard) {
-  ByteReader in(bytes.data(), bytes.size());
-  DescribedStudy d;
-  try {
-    if (in.u32("the description's version") != kStudyDescriptionVersion)
-      throw InputError({}, shard, "written by another version of bleedsim study (its description's format differs)");
-    d.scenario_path = in.text("the scenario's path");
-    d.scenario_text = in.text("the scenario's text");
-    for (std::uint32_t k = in.u32("the knob count"); k > 0; --k) d.spec.knobs.push_back(parse_knob(in.text("a knob")));
-    for (std::uint32_t b = in.u32("the backend count"); b > 0; --b) d.spec.backends.push_back(BackendKind(in.u32("a backend")));
-    const bool timed = in.u32("the duration's flag") != 0;
-    const double duration_s = in.f64("the duration");
-    if (timed) d.spec.duration_s = duration_s;
-    d.spec.seeds = in.i32("the seeds");
-    d.spec.cpu_threads = in.i32("the threads");
-  } catch (const TruncatedBytes& e) {
-    throw InputError({}, shard, std::string("its study description is cut off: ") + e.what());
-  }
-  return d;
 }
 
 // Names one study: what it runs (Study::key: the scene, its settings, seeds, backends and grid), the
@@ -370,7 +294,7 @@ int study_command(const StudyOptions& options, const Ranks& ranks) {
   if (shard) {
     const fs::path path = dir / shard_file_name(*shard);
     write_shard(path.string(),
-                {fingerprint_of(study, scenario), describe(scenario, options, spec), costs.size(), *shard, results});
+                {fingerprint_of(study, scenario), describe_study(scenario, options.knobs, spec), costs.size(), *shard, results});
     std::printf("bleedsim study: wrote %s (%zu of %zu jobs); merge the %d shards with: bleedsim study merge\n",
                 path.string().c_str(), results.size(), costs.size(), shard->count);
     return 0;
@@ -382,7 +306,7 @@ int study_merge_command(const StudyMergeOptions& options) {
   // Every shard is read and checked before anything is made.
   const MergedShards merged = merge_shards(options.shards);
   const std::string& first = options.shards.front();
-  const DescribedStudy described = read_description(merged.study, first);
+  const DescribedStudy described = read_study_description(merged.study, first);
   // The scenario as the shards ran it, wherever this runs: its text from the shard, the files it names
   // beside its absolute path.
   const Scenario scenario = parse_scenario(described.scenario_text, described.scenario_path);

@@ -78,6 +78,15 @@ std::size_t ByteReader::length(const std::string& what) {
   return std::size_t(n);
 }
 
+std::size_t ByteReader::count(const std::string& what, std::size_t least_bytes) {
+  const std::uint64_t n = u64(what);
+  if (n > remaining() / least_bytes)
+    throw TruncatedBytes(what + " is " + std::to_string(n) + " at byte " + std::to_string(at_) + ", but the " +
+                         std::to_string(remaining()) + " bytes left hold at most " +
+                         std::to_string(remaining() / least_bytes));
+  return std::size_t(n);
+}
+
 std::vector<std::uint8_t> ByteReader::bytes(const std::string& what) {
   const std::size_t n = length(what);
   const std::uint8_t* p = take(n, what);

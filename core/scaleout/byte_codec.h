@@ -46,6 +46,9 @@ class ByteReader {
   void raw(void* out, std::size_t size, const std::string& what);
   std::vector<std::uint8_t> bytes(const std::string& what);
   std::string text(const std::string& what);
+  // A count (u64) of things that take at least `least_bytes` each, checked against what is left
+  // before anything is allocated for them.
+  std::size_t count(const std::string& what, std::size_t least_bytes);
 
   std::size_t offset() const { return at_; }
   std::size_t remaining() const { return size_ - at_; }

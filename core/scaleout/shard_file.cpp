@@ -97,6 +97,15 @@ std::vector<std::uint8_t> read_whole_file(const std::string& path) {
   return bytes;
 }
 
+// What precedes a job's record in the file: its index, its origin and the record's length.
+ByteWriter job_label(const JobResult& result) {
+  ByteWriter label;
+  label.u64(result.job);
+  write_origin(label, result.origin);
+  label.u64(result.record.size());
+  return label;
+}
+
 std::string shard_text(ShardId shard) { return std::to_string(shard.index) + "/" + std::to_string(shard.count); }
 
 }  // namespace
@@ -148,10 +157,7 @@ void write_shard(const std::string& path, const ShardContents& contents) {
   std::vector<std::vector<std::uint8_t>> labels;  // each record's job, origin and length
   std::uint64_t length = kPrologueBytes + head.data().size() + kChecksumBytes;
   for (const JobResult& result : contents.results) {
-    ByteWriter label;
-    label.u64(result.job);
-    write_origin(label, result.origin);
-    label.u64(result.record.size());
+    ByteWriter label = job_label(result);
     length += label.data().size() + result.record.size();
     labels.push_back(label.take());
   }
@@ -181,8 +187,9 @@ void write_shard(const std::string& path, const ShardContents& contents) {
   }
 }
 
-ShardContents read_shard(const std::string& path) {
-  const std::vector<std::uint8_t> bytes = read_whole_file(path);
+ShardContents read_shard(const std::string& path) { return decode_shard(read_whole_file(path), path); }
+
+ShardContents decode_shard(const std::vector<std::uint8_t>& bytes, const std::string& path) {
   if (bytes.size() < sizeof kMagic || !std::equal(kMagic, kMagic + sizeof kMagic, bytes.begin()))
     throw file_error(path, "not a bleedsim shard file (it does not begin as one)");
   if (bytes.size() < kPrologueBytes + kChecksumBytes)
@@ -213,7 +220,9 @@ ShardContents read_shard(const std::string& path) {
     contents.job_count = in.u64("the job count");
     contents.shard.index = int(in.u32("the shard's index"));
     contents.shard.count = int(in.u32("the shard count"));
-    contents.results.resize(in.u64("the result count"));
+    // The fewest bytes a job takes (an empty host and record): a damaged count cannot ask for more
+    // jobs than the file holds.
+    contents.results.resize(in.count("the result count", job_label(JobResult{}).data().size()));
     for (JobResult& result : contents.results) {
       result.job = in.u64("a job's index");
       const std::string job = "job " + std::to_string(result.job);

@@ -41,6 +41,8 @@ void write_shard(const std::string& path, const ShardContents& contents);
 // Throws InputError naming the file for one that is missing, not a regular file (refused unopened),
 // unreadable, not a shard file, of another format version, cut off, or damaged (its checksum).
 ShardContents read_shard(const std::string& path);
+// read_shard's checks of a shard file's bytes, `path` naming it in the messages.
+ShardContents decode_shard(const std::vector<std::uint8_t>& bytes, const std::string& path);
 
 struct MergedShards {
   std::string fingerprint;

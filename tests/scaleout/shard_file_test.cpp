@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "core/runtime/hash.h"
 #include "core/runtime/input_error.h"
 #include "core/scaleout/job_assignment.h"
 #include "core/scaleout/shard_file.h"
@@ -215,6 +216,31 @@ TEST(ShardFile, EveryDamagedByteIsRefusedNamingTheFile) {
   bytes.push_back(0);
   write_bytes(damaged, bytes);
   EXPECT_TRUE(has(refusal([&] { read_shard(damaged); }), "is damaged: 1 bytes more than the"));
+}
+
+// The shard fuzzer's find (fuzz/regressions/shard_fuzzer/): a damaged result count, in a file whose
+// checksum was made to fit it, was allocated for before any job was read: std::length_error, or
+// gigabytes, where the file holds five jobs. A count is checked against the bytes left first.
+TEST(ShardFile, AResultCountPastWhatTheFileCanHoldIsRefused) {
+  const fs::path dir = scratch();
+  const std::string path = (dir / "counted.bleedshard").string();
+  write_shard(path, toy_shard(5, 0, 1));
+  const std::vector<std::uint8_t> whole = file_bytes(path);
+  // After the prologue (20 bytes): the fingerprint "f00d" and the study, each after its length, the
+  // job count, the shard's i and K, then the count; and at the end, the checksum of all before it.
+  const std::size_t count_at = 20 + 8 + 4 + 8 + kStudy.size() + 8 + 4 + 4, checksum_at = whole.size() - 8;
+  const auto put = [](std::vector<std::uint8_t>& bytes, std::size_t at, std::uint64_t v) {
+    for (int i = 0; i < 8; ++i) bytes[at + std::size_t(i)] = std::uint8_t(v >> (8 * i));
+  };
+  for (const std::uint64_t count : {std::uint64_t(1) << 60, ~std::uint64_t(0)}) {
+    std::vector<std::uint8_t> bytes = whole;
+    put(bytes, count_at, count);
+    put(bytes, checksum_at, fnv1a64(bytes.data(), checksum_at));
+    const std::string message = refusal([&] { decode_shard(bytes, path); });
+    EXPECT_TRUE(has(message, path + ": the shard file is damaged: the result count is " + std::to_string(count) +
+                                 " at byte " + std::to_string(count_at + 8) + ", but the "))
+        << message;
+  }
 }
 
 TEST(ShardFile, AFileThatIsNotAShardIsRefused) {
