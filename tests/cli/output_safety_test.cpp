@@ -6,12 +6,14 @@
 
 #include <csignal>
 #include <filesystem>
+#include <functional>
 #include <map>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include "tests/cli/cli_harness.h"
+#include "tests/cli/study_files.h"
 
 namespace bleedsim::test {
 namespace {
@@ -278,42 +280,34 @@ void copy_folder(const fs::path& from, const fs::path& to) {
   fs::copy(from, to, fs::copy_options::recursive);
 }
 
-// Issue 38, item 1. A kill just before the swap folder was removed left it empty; the next run's
-// recovery took the folder's files, the swapped-in run's, for the last run's and deleted them. The
-// swap is journaled: a run killed (BLEEDSIM_TEST_KILL_AT=N, docs/reliability.md) before any one of
-// its steps, and then one killed before any one step of the recovery, leave the folder, once a
-// later run has recovered it, with the older run whole or the newer run whole, and the user's file.
-TEST(OutputSafety, AKillAtAnyStepOfTheSwapLeavesOneWholeRun) {
-  const fs::path dir = scratch_folder(), out = dir / "out", killed_state = dir / "killed";
-  const fs::path older = write_small_scene(dir, "older"), newer = write_small_scene(dir, "newer");
-  // The two runs as they look whole, each with a file of the user's beside it.
-  ASSERT_EQ(run_shell(run_into(older, dir / "old")).exit_code, 0);
-  ASSERT_EQ(run_shell(run_into(newer, dir / "new", "--png-every 3 --contact-sheet 0")).exit_code, 0);
-  for (const char* run : {"old", "new"}) write_text(dir / run / "notes.txt", "the user's own");
-  const std::map<std::string, std::string> old_run = visible_files(dir / "old"), new_run = visible_files(dir / "new");
-  ASSERT_NE(old_run, new_run);
-  const auto kill_at = [](int step) { return "BLEEDSIM_TEST_KILL_AT=" + std::to_string(step) + " "; };
-  // A run that recovers the folder and then fails before its first frame is written.
-  const auto recovering = [&](const std::string& environment) { return "ulimit -f 1; " + environment + run_into(older, out); };
-  const auto expect_one_whole_run = [&](const std::string& when) {
-    const std::map<std::string, std::string> now = visible_files(out);
-    EXPECT_TRUE(now == old_run || now == new_run) << when << ": the folder holds " << names_of(now);
+// A folder's files by their paths inside, each as a kill test compares it.
+using FolderView = std::function<std::map<std::string, std::string>(const fs::path&)>;
+
+// Issue 38, items 1 and 4: `write`, a command that writes `out` (holding a copy of `older` each
+// time), killed (BLEEDSIM_TEST_KILL_AT=N, docs/reliability.md) before each step of its swap in turn;
+// and after each such kill, `recover`, a command that recovers the folder and then fails (exit 1)
+// before it writes, killed before each step of the recovery in turn and then run again. Once
+// recovered, the folder, as `view` reads it, always holds what `older` holds or what `newer` holds
+// (what `write` writes): one whole, never a mix, never less; and no swap is left pending, which
+// would stop every later command in the folder.
+void expect_every_kill_to_leave_one_whole(const fs::path& out, const fs::path& older, const fs::path& newer,
+                                          const std::string& write, const std::string& recover,
+                                          const FolderView& view) {
+  const std::map<std::string, std::string> old_files = view(older), new_files = view(newer);
+  ASSERT_NE(old_files, new_files);
+  const fs::path killed_state = out.string() + "-killed";
+  const auto kill_at = [](int step) { return "export BLEEDSIM_TEST_KILL_AT=" + std::to_string(step) + "; "; };
+  const auto expect_one_whole = [&](const std::string& when) {
+    const std::map<std::string, std::string> now = view(out);
+    EXPECT_TRUE(now == old_files || now == new_files) << when << ": the folder holds " << names_of(now);
+    EXPECT_FALSE(fs::exists(out / ".bleedsim-swap")) << when << ": the swap was neither completed nor rolled back";
   };
-
-  // The issue's reproducer: the state a kill before the last step of the old swap left.
-  copy_folder(dir / "new", out);
-  fs::create_directory(out / ".bleedsim-swap");
-  const CliResult after_empty_swap = run_shell(recovering(""));
-  EXPECT_EQ(after_empty_swap.exit_code, 1) << after_empty_swap.output;
-  EXPECT_TRUE(visible_files(out) == new_run) << "after an empty swap folder, the folder holds " << names_of(visible_files(out))
-                                            << ": " << after_empty_swap.output;
-
   int commit_steps = 0;
   for (int step = 1; step < 100; ++step) {
-    copy_folder(dir / "old", out);
-    const CliResult killed = run_shell(kill_at(step) + run_into(newer, out, "--png-every 3 --contact-sheet 0"));
+    copy_folder(older, out);
+    const CliResult killed = run_shell(kill_at(step) + write);
     if (killed.exit_code == 0) {
-      EXPECT_TRUE(visible_files(out) == new_run) << "the run not killed: " << names_of(visible_files(out));
+      EXPECT_TRUE(view(out) == new_files) << "not killed: the folder holds " << names_of(view(out));
       break;
     }
     ASSERT_EQ(killed.exit_code, 128 + SIGKILL) << "step " << step << ": " << killed.output;
@@ -323,18 +317,91 @@ TEST(OutputSafety, AKillAtAnyStepOfTheSwapLeavesOneWholeRun) {
       copy_folder(killed_state, out);
       const std::string when = "killed at step " + std::to_string(step) + " of the swap, then at step " +
                                std::to_string(recovery_step) + " of the recovery";
-      const CliResult recovery = run_shell(recovering(kill_at(recovery_step)));
+      const CliResult recovery = run_shell(kill_at(recovery_step) + recover);
       if (recovery.exit_code != 128 + SIGKILL) {
         EXPECT_EQ(recovery.exit_code, 1) << when << ": " << recovery.output;
-        expect_one_whole_run("killed at step " + std::to_string(step) + " of the swap, then recovered");
+        expect_one_whole("killed at step " + std::to_string(step) + " of the swap, then recovered");
         break;
       }
-      const CliResult recovered = run_shell(recovering(""));
+      const CliResult recovered = run_shell(recover);
       EXPECT_EQ(recovered.exit_code, 1) << when << ": " << recovered.output;
-      expect_one_whole_run(when);
+      expect_one_whole(when);
     }
   }
   EXPECT_GE(commit_steps, 8) << "the swap's steps were not reached: is BLEEDSIM_TEST_KILL_AT read?";
+}
+
+// Issue 38, item 1. A kill just before the swap folder was removed left it empty; the next run's
+// recovery took the folder's files, the swapped-in run's, for the last run's and deleted them. The
+// swap is journaled: a run killed at any step, then one killed at any step of the recovery, leave
+// the older run whole or the newer run whole, and the user's file.
+TEST(OutputSafety, AKillAtAnyStepOfTheSwapLeavesOneWholeRun) {
+  const fs::path dir = scratch_folder(), out = dir / "out";
+  const fs::path older = write_small_scene(dir, "older"), newer = write_small_scene(dir, "newer");
+  const std::string newer_options = "--png-every 3 --contact-sheet 0";
+  // The two runs as they look whole, each with a file of the user's beside it.
+  ASSERT_EQ(run_shell(run_into(older, dir / "old")).exit_code, 0);
+  ASSERT_EQ(run_shell(run_into(newer, dir / "new", newer_options)).exit_code, 0);
+  for (const char* run : {"old", "new"}) write_text(dir / run / "notes.txt", "the user's own");
+  // A run that recovers the folder and then fails before its first frame is written.
+  const std::string recover = "ulimit -f 1; " + run_into(older, out);
+
+  // The issue's reproducer: the state a kill before the last step of the old swap left.
+  copy_folder(dir / "new", out);
+  fs::create_directory(out / ".bleedsim-swap");
+  const CliResult after_empty_swap = run_shell(recover);
+  EXPECT_EQ(after_empty_swap.exit_code, 1) << after_empty_swap.output;
+  EXPECT_TRUE(visible_files(out) == visible_files(dir / "new"))
+      << "after an empty swap folder, the folder holds " << names_of(visible_files(out)) << ": " << after_empty_swap.output;
+
+  expect_every_kill_to_leave_one_whole(out, dir / "old", dir / "new", run_into(newer, out, newer_options), recover,
+                                       visible_files);
+}
+
+// A study of one frame of an 8 x 6 px panel, two seeds: a ladder of one level is 6 jobs, done in
+// hundredths of a second, so that the study can run a few hundred times.
+fs::path write_study_scene(const fs::path& dir) {
+  const fs::path file = dir / "study.toml";
+  write_text(file, "[scene]\nname = \"study\"\nwidth_px = 8\nheight_px = 6\nwidth_mm = 8\nheight_mm = 6\n"
+                   "duration_s = 0.04\n[spread]\nradius_mm = 2\n[[cut]]\nx_mm = 4\ny_mm = 2\n");
+  return file;
+}
+
+std::string study_into(const fs::path& scene, const fs::path& out, const std::string& options) {
+  return "'" + cli_path() + "' study " + quoted(scene) + " --backend cpu --threads 1 --seeds 2 -q " + options +
+         " --out " + quoted(out);
+}
+
+// What a study folder holds but its timings, which differ from run to run: every file the user
+// sees, by its path; the tables without their time columns, study.h5's data without /timing, and a
+// plot by its name alone (it draws the timings).
+std::map<std::string, std::string> study_without_timings(const fs::path& dir) {
+  std::map<std::string, std::string> files = visible_files(dir);
+  for (auto& [name, contents] : files) {
+    if (name == "study.csv" || name == "jobs.csv") contents = without_timings(contents);
+    if (name == "study.h5") {
+      contents.clear();
+      for (const auto& [key, value] : study_data(dir / name)) contents += key + " = " + value + "\n";
+    }
+    if (name.rfind("plots/", 0) == 0) contents.clear();
+  }
+  return files;
+}
+
+// Issue 38, item 4: the same for a study's files, which are swapped in as a run's (78f8421). The
+// older study has its plots (where Debian's matplotlib draws them), the newer climbs another
+// ladder without them, so that each has files the other lacks.
+TEST(OutputSafety, AKillAtAnyStepOfTheSwapLeavesOneWholeStudy) {
+  const fs::path dir = scratch_folder(), out = dir / "out";
+  const fs::path scene = write_study_scene(dir);
+  const std::string older = "--knob resolution=1", newer = "--knob resolution=0.5,1 --no-plots";
+  ASSERT_EQ(run_shell(study_into(scene, dir / "old", older)).exit_code, 0);
+  ASSERT_EQ(run_shell(study_into(scene, dir / "new", newer)).exit_code, 0);
+  for (const char* study : {"old", "new"}) write_text(dir / study / "notes.txt", "the user's own");
+  // A study that recovers the folder and then fails at its first file, study.csv.
+  const std::string recover = "ulimit -f 1; " + study_into(scene, out, older + " --no-plots");
+  expect_every_kill_to_leave_one_whole(out, dir / "old", dir / "new", study_into(scene, out, newer), recover,
+                                       study_without_timings);
 }
 
 // Issue 38, item 2. `--out` into a folder of the user's moved every name a run may write (png/,
