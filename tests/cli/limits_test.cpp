@@ -47,19 +47,29 @@ TEST(Limits, ANanometreParticleIsRefusedAtItsDiameter) {
                      {"s.toml:8:15: particles.diameter_mm: the collision grid would have 1.136e+20 cells"});
 }
 
-// Item 5: a 400 KB PNG that decodes to 20000 x 20000 px (1.6 GB of RGBA) for a 64 x 48 panel is
-// refused from its header, before a byte of it is decoded.
-TEST(Limits, APngBombIsRefusedFromItsHeader) {
-  const fs::path dir = scratch_folder();
+// A black 8-bit PNG of width x height px with `channels` channels (1: grey, 3: RGB), written by
+// Python's zlib: a few hundred KB however many pixels it has, so a test can have a huge image.
+void write_blank_png(const fs::path& path, int width, int height, int channels) {
+  const std::string size = std::to_string(width) + ", " + std::to_string(height);
   const CliResult made = run_shell(
       "'" + python() + "' -c '\n"
       "import struct, sys, zlib\n"
       "def chunk(kind, data): return struct.pack(\">I\", len(data)) + kind + data + struct.pack(\">I\", zlib.crc32(kind + data))\n"
       "z = zlib.compressobj(9)\n"
-      "rows = b\"\".join(z.compress(bytes(20001)) for _ in range(20000)) + z.flush()\n"
-      "sys.stdout.buffer.write(b\"\\x89PNG\\r\\n\\x1a\\n\" + chunk(b\"IHDR\", struct.pack(\">IIBBBBB\", 20000, 20000, 8, 0, 0, 0, 0))"
-      " + chunk(b\"IDAT\", rows) + chunk(b\"IEND\", b\"\"))\n' > '" + (dir / "bomb.png").string() + "'");
+      "row = bytes(1 + " + std::to_string(channels) + " * " + std::to_string(width) + ")\n"
+      "rows = b\"\".join(z.compress(row) for _ in range(" + std::to_string(height) + ")) + z.flush()\n"
+      "sys.stdout.buffer.write(b\"\\x89PNG\\r\\n\\x1a\\n\" + chunk(b\"IHDR\", struct.pack(\">IIBBBBB\", " + size + ", 8, " +
+      (channels == 3 ? "2" : "0") + ", 0, 0, 0))"
+      " + chunk(b\"IDAT\", rows) + chunk(b\"IEND\", b\"\"))\n' > '" + path.string() + "'");
   ASSERT_EQ(made.exit_code, 0) << made.output;
+}
+
+// Item 5: a 400 KB PNG that decodes to 20000 x 20000 px (1.6 GB of RGBA) for a 64 x 48 panel is
+// refused from its header, before a byte of it is decoded.
+TEST(Limits, APngBombIsRefusedFromItsHeader) {
+  const fs::path dir = scratch_folder();
+  write_blank_png(dir / "bomb.png", 20000, 20000, 1);
+  if (HasFatalFailure()) return;
   ASSERT_LT(fs::file_size(dir / "bomb.png"), 1u << 20) << "the bomb should be small";
   expect_both_refuse(dir, kScene + "[tissue]\ntexture = \"bomb.png\"\n",
                      {"s.toml:8:11: tissue.texture: texture", "is 20000 x 20000 px; a texture may be at most 16384 px"});
@@ -174,16 +184,8 @@ TEST(Limits, AMeshTooLargeForMemoryIsRefusedAtItsKey) {
 // counts the same, decodes it under a limit that the former count of 7.5 GB refused.
 TEST(Limits, ValidateAndRunCountATexturesDecoding) {
   const fs::path dir = scratch_folder();
-  const CliResult made = run_shell(
-      "'" + python() + "' -c '\n"
-      "import struct, sys, zlib\n"
-      "def chunk(kind, data): return struct.pack(\">I\", len(data)) + kind + data + struct.pack(\">I\", zlib.crc32(kind + data))\n"
-      "z = zlib.compressobj(9)\n"
-      "row = bytes(1 + 3 * 16384)\n"
-      "rows = b\"\".join(z.compress(row) for _ in range(16384)) + z.flush()\n"
-      "sys.stdout.buffer.write(b\"\\x89PNG\\r\\n\\x1a\\n\" + chunk(b\"IHDR\", struct.pack(\">IIBBBBB\", 16384, 16384, 8, 2, 0, 0, 0))"
-      " + chunk(b\"IDAT\", rows) + chunk(b\"IEND\", b\"\"))\n' > '" + (dir / "big.png").string() + "'");
-  ASSERT_EQ(made.exit_code, 0) << made.output;
+  write_blank_png(dir / "big.png", 16384, 16384, 3);
+  if (HasFatalFailure()) return;
   write_text(dir / "s.toml", kScene + "[tissue]\ntexture = \"big.png\"\n");
   const CliResult validated = run_cli("validate '" + (dir / "s.toml").string() + "'");
   ASSERT_EQ(validated.exit_code, 0) << validated.output;
