@@ -60,7 +60,8 @@ struct StudyMergeOptions {
 
 int study_merge_command(const StudyMergeOptions& options);
 int validate_command(const std::string& scenario);
-int hash_command(const std::string& scenario, const BackendChoice& backend);
+// `overrides`: load_scenario's ("table.key=value" each).
+int hash_command(const std::string& scenario, const BackendChoice& backend, const std::vector<std::string>& overrides);
 int info_command();
 // "text", "json" or "markdown".
 int params_command(const std::string& format);

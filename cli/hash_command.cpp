@@ -10,8 +10,8 @@
 
 namespace bleedsim::cli {
 
-int hash_command(const std::string& scenario, const BackendChoice& backend) {
-  Scenario file = load_scenario(scenario);
+int hash_command(const std::string& scenario, const BackendChoice& backend, const std::vector<std::string>& overrides) {
+  Scenario file = load_scenario(scenario, ReadTissue::draw, overrides);
   const std::unique_ptr<Simulation> made = make_simulation(file, backend);
   Simulation& sim = *made;
   std::fprintf(stderr, "bleedsim: hashing on %s (%s)\n", to_string(sim.backend().kind()),

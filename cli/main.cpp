@@ -154,13 +154,18 @@ Command add_hash_command(CLI::App& app) {
   struct Given {
     std::string scenario;
     BackendOptions backend;
+    std::vector<std::string> overrides;
   };
   const auto given = std::make_shared<Given>();
   CLI::App* command =
       app.add_subcommand("hash", "print each frame's per-field FNV-1a 64 hashes (writes no files)");
   command->add_option("scenario", given->scenario, "scenario file (.toml)")->required();
   add_backend_options(*command, given->backend);
-  return {command, [given] { return hash_command(given->scenario, given->backend.choice()); }};
+  command->add_option("--set", given->overrides,
+                      "table.key=value (TOML): a value over the file's, checked as if written there; repeat "
+                      "for more (the Python module's overrides, docs/python.md)")
+      ->allow_extra_args(false);
+  return {command, [given] { return hash_command(given->scenario, given->backend.choice(), given->overrides); }};
 }
 
 // "name1, name2, ...": every knob a study may climb, for --knob's help.

@@ -51,8 +51,9 @@ class Reader {
  public:
   explicit Reader(Scenario& scenario) : s_(scenario) {}
 
+  // An override's region names the overrides, not the file.
   SourcePlace place(const toml::source_region& region) const {
-    return {s_.path, int(region.begin.line), int(region.begin.column)};
+    return {region.path ? *region.path : s_.path, int(region.begin.line), int(region.begin.column)};
   }
   [[noreturn]] void fail(const toml::source_region& where, const std::string& key, const std::string& message) const {
     throw InputError(place(where), key, message);
@@ -494,6 +495,37 @@ void read_tissue(const TissueFile& tissue, Scenario& s, ReadTissue how) {
   }
 }
 
+// A TOML parse error at its place in the document named `path`.
+toml::table parse_toml(const std::string& text, const std::string& path) {
+  try {
+    return toml::parse(text, path);
+  } catch (const toml::parse_error& e) {
+    const auto& begin = e.source().begin;
+    throw InputError(SourcePlace{path, int(begin.line), int(begin.column)}, "", std::string(e.description()));
+  }
+}
+
+// Puts each value of `overrides` into `into` at its path, over what the file wrote, keeping the
+// override's place so that the reader's messages point at it. A table the file wrote another way
+// (an array of [[cut]] tables) cannot be reached by a path: refused, naming the override. Values
+// are moved: a copied toml++ node loses its place.
+void override_values(toml::table& into, toml::table& overrides, const std::string& at) {
+  for (auto&& [key, node] : overrides) {
+    const std::string path = at.empty() ? std::string(key.str()) : at + "." + std::string(key.str());
+    toml::node* existing = into.get(key);
+    if (node.is_table() && existing && existing->is_table()) {
+      override_values(*existing->as_table(), *node.as_table(), path);
+    } else if (node.is_table() && existing) {
+      const toml::source_region& where = key.source();
+      throw InputError(SourcePlace{*where.path, int(where.begin.line), int(where.begin.column)}, path,
+                       std::string("cannot be overridden by a path: the scenario holds ") + kind_of(*existing) +
+                           " here");
+    } else {
+      into.insert_or_assign(key, std::move(node));
+    }
+  }
+}
+
 }  // namespace
 
 SourcePlace Scenario::place_of(const std::string& key) const {
@@ -512,14 +544,13 @@ InputError Scenario::placed(const InputError& error) const {
   return InputError(places.count(key) || !places.count(table) ? place_of(key) : place_of(table), key, message);
 }
 
-Scenario parse_scenario(const std::string& text, const std::string& path, ReadTissue tissue) {
-  toml::table root;
-  try {
-    root = toml::parse(text, path);
-  } catch (const toml::parse_error& e) {
-    const auto& begin = e.source().begin;
-    throw InputError(SourcePlace{path, int(begin.line), int(begin.column)}, "", std::string(e.description()));
-  }
+Scenario parse_scenario(const std::string& text, const std::string& path, ReadTissue tissue,
+                        const std::vector<std::string>& overrides) {
+  toml::table root = parse_toml(text, path);
+  std::string override_lines;
+  for (const std::string& line : overrides) override_lines += line + "\n";
+  toml::table override_table = parse_toml(override_lines, kOverridesName);
+  override_values(root, override_table, "");
   Scenario s;
   s.path = path;
   s.text = text;
@@ -545,8 +576,8 @@ Scenario parse_scenario(const std::string& text, const std::string& path, ReadTi
   return s;
 }
 
-Scenario load_scenario(const std::string& path, ReadTissue tissue) {
-  return parse_scenario(read_text_file(path, "scenario", kMaxScenarioBytes), path, tissue);
+Scenario load_scenario(const std::string& path, ReadTissue tissue, const std::vector<std::string>& overrides) {
+  return parse_scenario(read_text_file(path, "scenario", kMaxScenarioBytes), path, tissue, overrides);
 }
 
 }  // namespace bleedsim

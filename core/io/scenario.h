@@ -50,12 +50,21 @@ constexpr std::uintmax_t kMaxScenarioBytes = 16u << 20;
 // the size of the panel; Scene::tissue and Scene::vessel_density stay empty).
 enum class ReadTissue { draw, header_only };
 
+// Overrides are values set from outside the file, each a TOML line "table.key=value"
+// ("particles.diameter_mm=0.1"): `bleedsim hash --set`, and the Python module's dict. They are read
+// as the lines of a document of this name, over what the file wrote, and checked with the file as
+// if written there: a message about one reads "overrides:N:COLUMN: key: ...", N its place among them.
+// Scenario::text stays the file's text.
+inline constexpr const char* kOverridesName = "overrides";
+
 // Reads, validates and resolves a scenario file: every key checked for type and range (each
 // table's rules in core/), unknown keys refused, the memory the run takes counted, the tissue
 // drawn or loaded. Throws InputError naming file, line, column and key.
-Scenario load_scenario(const std::string& path, ReadTissue tissue = ReadTissue::draw);
+Scenario load_scenario(const std::string& path, ReadTissue tissue = ReadTissue::draw,
+                       const std::vector<std::string>& overrides = {});
 
 // The same for text already in memory; `path` names it in messages and anchors relative paths.
-Scenario parse_scenario(const std::string& text, const std::string& path, ReadTissue tissue = ReadTissue::draw);
+Scenario parse_scenario(const std::string& text, const std::string& path, ReadTissue tissue = ReadTissue::draw,
+                        const std::vector<std::string>& overrides = {});
 
 }  // namespace bleedsim
