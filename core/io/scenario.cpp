@@ -548,7 +548,14 @@ Scenario parse_scenario(const std::string& text, const std::string& path, ReadTi
                         const std::vector<std::string>& overrides) {
   toml::table root = parse_toml(text, path);
   std::string override_lines;
-  for (const std::string& line : overrides) override_lines += line + "\n";
+  for (std::size_t i = 0; i < overrides.size(); ++i) {
+    // One line each, so that N in "overrides:N" is the override's place among them.
+    const std::size_t end = overrides[i].find_first_of("\r\n");
+    if (end != std::string::npos)
+      throw InputError(SourcePlace{kOverridesName, int(i + 1), int(end + 1)}, "",
+                       "an override is one line, table.key=value");
+    override_lines += overrides[i] + "\n";
+  }
   toml::table override_table = parse_toml(override_lines, kOverridesName);
   override_values(root, override_table, "");
   Scenario s;
