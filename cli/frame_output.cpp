@@ -62,6 +62,11 @@ void FrameOutput::encode(FrameJob& job, int task) const {
 void FrameOutput::write(const FrameJob& job) {
   const long k = job.frame;
   if (out_.hdf5) out_.hdf5->append_chunks(job.time_s, job.chunks, job.ticks);
+  if (out_.xdmf) {
+    std::vector<const void*> fields;
+    for (const HostBytes& field : job.fields) fields.push_back(field.data());
+    out_.xdmf->add_frame(job.time_s, fields);
+  }
   if (png_due(k)) {
     write_png_file((out_.png_folder / png_name("frame", k)).string(), job.png);
     ++pngs_;

@@ -10,6 +10,7 @@
 #include "cli/output_queue.h"
 #include "core/io/contact_sheet.h"
 #include "core/io/hdf5_writer.h"
+#include "core/io/xdmf_writer.h"
 #include "core/runtime/image.h"
 
 namespace bleedsim::cli {
@@ -17,6 +18,7 @@ namespace bleedsim::cli {
 // Where a run's frames go; a null pointer, or png_every 0, writes none of that kind.
 struct FrameOutputs {
   Hdf5FrameWriter* hdf5 = nullptr;  // every field, the frame first
+  XdmfWriter* xdmf = nullptr;       // told of each frame the HDF5 file takes
   std::filesystem::path png_folder;
   int png_every = 0;  // PNGs of frame 0, every png_every-th frame and the last of `frames`
   long frames = 0;

@@ -20,9 +20,11 @@
 #include "cli/output_folder.h"
 #include "cli/output_queue.h"
 #include "cli/progress.h"
+#include "core/effects/particles/particle_model.h"
 #include "core/io/contact_sheet.h"
 #include "core/io/hdf5_writer.h"
 #include "core/io/scenario.h"
+#include "core/io/xdmf_writer.h"
 #include "core/mesh/view_render.h"
 #include "core/runtime/build_info.h"
 #include "core/runtime/timing_summary.h"
@@ -163,12 +165,20 @@ ContactSheets contact_sheets(const Scene& s, const Scenario& scenario) {
   return sheets;
 }
 
+// The particles' lifetime in steps, which tells the description which slots hold particles; 0 in a
+// scene without them.
+std::uint32_t lifetime_steps(const Simulation& sim) {
+  const ParticleSettings* particles = sim.resolved().find<ParticleSettings>();
+  return particles ? particles->lifetime.steps : 0;
+}
+
 // Where each frame goes: the HDF5 file (when there is one), the PNGs, the sheets and, for a scene
 // with a [view], the mesh drawn with the frame's texture from the scenario's endoscope.
 FrameOutputs frame_outputs(const Scene& s, const Scenario& scenario, const OutputFiles& files, Hdf5FrameWriter* hdf5,
-                           ContactSheets& sheets) {
+                           XdmfWriter* xdmf, ContactSheets& sheets) {
   FrameOutputs outputs;
   outputs.hdf5 = hdf5;
+  outputs.xdmf = xdmf;
   outputs.png_folder = files.partial("png");
   outputs.png_every = scenario.output.png_every;
   outputs.frames = s.frame_count();
@@ -303,14 +313,17 @@ RunTally write_run(const RunOptions& options, const Scenario& scenario, Simulati
   RunTally tally;
   try {
     std::unique_ptr<Hdf5FrameWriter> writer;
-    if (options.hdf5)
+    std::unique_ptr<XdmfWriter> xdmf;
+    if (options.hdf5) {
       writer = std::make_unique<Hdf5FrameWriter>(files.partial("frames.h5").string(), specs,
                                                  provenance(sim, scenario), scenario.output.deflate_level,
                                                  s.trace.has_value());
+      xdmf = std::make_unique<XdmfWriter>("frames.h5", specs, s.domain.grid(), lifetime_steps(sim));
+    }
     if (scenario.output.png_every > 0) fs::create_directory(files.partial("png"));
     // Each frame's outputs, encoded on the output's workers and written on its writer thread, frame
     // after frame: the simulation goes on meanwhile.
-    FrameOutput frame_output(frame_outputs(s, scenario, files, writer.get(), sheets));
+    FrameOutput frame_output(frame_outputs(s, scenario, files, writer.get(), xdmf.get(), sheets));
     const int workers = output_workers(options);
     {
       OutputQueue output(workers, frames_in_flight(workers, frame_bytes(specs)), frame_output.work());
@@ -319,6 +332,7 @@ RunTally write_run(const RunOptions& options, const Scenario& scenario, Simulati
     tally.pngs = frame_output.pngs();
     progress.clear();
     if (writer) writer->finish(tally.written == frames);
+    if (xdmf) xdmf->write(files.partial("frames.xmf").string());
     // An interrupted run's sheet shows the frames it reached; the cells after stay dark.
     if (sheets.panel) sheets.panel->write(files.partial("contact_sheet.png").string());
     if (sheets.view) sheets.view->write(files.partial("view_contact_sheet.png").string());
@@ -333,6 +347,7 @@ RunTally write_run(const RunOptions& options, const Scenario& scenario, Simulati
 std::vector<std::string> run_file_names(const RunOptions& options, const Scenario& scenario, const ContactSheets& sheets) {
   std::vector<std::string> names;
   if (options.hdf5) names.push_back("frames.h5");
+  if (options.hdf5) names.push_back("frames.xmf");
   if (scenario.output.png_every > 0) names.push_back("png");
   if (sheets.panel) names.push_back("contact_sheet.png");
   if (sheets.view) names.push_back("view_contact_sheet.png");
@@ -340,18 +355,19 @@ std::vector<std::string> run_file_names(const RunOptions& options, const Scenari
 }
 
 // The longest paths a run writes, as OutputFiles::longest_path takes them: a file under its
-// temporary name (NAME.partial for frames.h5, NAME.tmp for a PNG), a frame's PNG in png/ (png_name
-// in cli/frame_output.cpp).
+// temporary name (NAME.partial for frames.h5, NAME.tmp for frames.xmf and a PNG), a frame's PNG in png/
+// (png_name in cli/frame_output.cpp).
 const std::string& longest_run_path() {
   static const std::string longest = OutputFiles::longest_path(
-      {"frames.h5.partial", "png/view_000000.png.tmp", "contact_sheet.png.tmp", "view_contact_sheet.png.tmp"});
+      {"frames.h5.partial", "frames.xmf.tmp", "png/view_000000.png.tmp", "contact_sheet.png.tmp", "view_contact_sheet.png.tmp"});
   return longest;
 }
 
 // What the run wrote, where it is now that it is published.
 std::string files_written(const RunOptions& options, const OutputFiles& files, const RunTally& tally,
                           const ContactSheets& sheets) {
-  std::string wrote = options.hdf5 ? files.published("frames.h5").string() : std::string("no HDF5");
+  std::string wrote = options.hdf5 ? files.published("frames.h5").string() + " and " + files.published("frames.xmf").string()
+                                   : std::string("no HDF5");
   if (tally.pngs > 0) wrote += " and " + std::to_string(tally.pngs) + " PNGs in " + files.published("png").string();
   if (sheets.panel) wrote += " and " + files.published("contact_sheet.png").string();
   if (sheets.view) wrote += " and " + files.published("view_contact_sheet.png").string();

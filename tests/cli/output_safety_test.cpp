@@ -90,7 +90,7 @@ TEST(OutputSafety, ASecondRunIntoABusyFolderIsRefusedAndTheFirstEndsWhole) {
   EXPECT_EQ(read.frames_written, 150);
   EXPECT_EQ(read.frames_stored, 150);
   EXPECT_EQ(read.scene, "first");
-  EXPECT_EQ(entries(out), std::vector<std::string>({".bleedsim-manifest", "frames.h5"}))
+  EXPECT_EQ(entries(out), std::vector<std::string>({".bleedsim-manifest", "frames.h5", "frames.xmf"}))
       << "no lock, partial or swap folder left";
 }
 
@@ -101,11 +101,12 @@ TEST(OutputSafety, TheFolderShowsOneWholeRunNeverAMix) {
   const fs::path dir = scratch_folder(), out = dir / "out";
   const fs::path with_pngs = write_scene(dir, "with-pngs", 12), without = write_scene(dir, "without", 9);
   ASSERT_EQ(run_shell(run_into(with_pngs, out, "--png-every 4 --contact-sheet 3")).exit_code, 0);
-  EXPECT_EQ(entries(out), std::vector<std::string>({".bleedsim-manifest", "contact_sheet.png", "frames.h5", "png"}));
+  EXPECT_EQ(entries(out), std::vector<std::string>({".bleedsim-manifest", "contact_sheet.png", "frames.h5", "frames.xmf", "png"}));
 
   const CliResult second = run_shell(run_into(without, out));
   ASSERT_EQ(second.exit_code, 0) << second.output;
-  EXPECT_EQ(entries(out), std::vector<std::string>({".bleedsim-manifest", "frames.h5"})) << "the first run's PNGs outlived it";
+  EXPECT_EQ(entries(out), std::vector<std::string>({".bleedsim-manifest", "frames.h5", "frames.xmf"}))
+      << "the first run's PNGs outlived it";
   EXPECT_EQ(read_with_h5py(out / "frames.h5").scene, "without");
 
   // A run that fails (its file may not grow past 300 KB) leaves the last whole run as it was.
@@ -113,7 +114,7 @@ TEST(OutputSafety, TheFolderShowsOneWholeRunNeverAMix) {
   const CliResult failed = run_shell("ulimit -f 300; " + run_into(with_pngs, out, "--png-every 1 --contact-sheet 3"));
   EXPECT_EQ(failed.exit_code, 1) << failed.output;
   EXPECT_EQ(read_bytes(out / "frames.h5"), before);
-  EXPECT_EQ(entries(out), std::vector<std::string>({".bleedsim-manifest", ".bleedsim-partial", "frames.h5"}));
+  EXPECT_EQ(entries(out), std::vector<std::string>({".bleedsim-manifest", ".bleedsim-partial", "frames.h5", "frames.xmf"}));
 }
 
 // Item 4. Under `ulimit -f` the run died of SIGXFSZ without a word (exit 153). A write failure ends
@@ -245,12 +246,12 @@ TEST(OutputSafety, TheNextRunSaysWhatAKilledRunLeftThatItClears) {
   EXPECT_EQ(quiet.output.find("clearing"), std::string::npos) << "nothing was left to clear: " << quiet.output;
 }
 
-// The base scene of issue 38: 32 x 24 px, 0.2 s (6 frames), the spread and particles; quick enough
-// to run a few hundred times.
-fs::path write_small_scene(const fs::path& dir, const std::string& name) {
+// The base scene of issue 38: 32 x 24 px, 0.2 s (6 frames) unless told, the spread and particles;
+// quick enough to run a few hundred times.
+fs::path write_small_scene(const fs::path& dir, const std::string& name, const std::string& duration_s = "0.2") {
   const fs::path file = dir / (name + ".toml");
   write_text(file, "[scene]\nname = \"" + name + "\"\nwidth_px = 32\nheight_px = 24\nwidth_mm = 16\nheight_mm = 12\n"
-                   "duration_s = 0.2\n[spread]\n[particles]\ncapacity = 1024\ndesign_depth_mm = 1\n"
+                   "duration_s = " + duration_s + "\n[spread]\n[particles]\ncapacity = 1024\ndesign_depth_mm = 1\n"
                    "[[cut]]\nx_mm = 8\ny_mm = 6\n[output]\npng_every = 2\ncontact_sheet = 4\n");
   return file;
 }
@@ -337,11 +338,13 @@ void expect_every_kill_to_leave_one_whole(const fs::path& out, const fs::path& o
 // the older run whole or the newer run whole, and the user's file.
 TEST(OutputSafety, AKillAtAnyStepOfTheSwapLeavesOneWholeRun) {
   const fs::path dir = scratch_folder(), out = dir / "out";
-  const fs::path older = write_small_scene(dir, "older"), newer = write_small_scene(dir, "newer");
+  // The newer run is a frame longer, so that its frames.xmf too differs from the older one's.
+  const fs::path older = write_small_scene(dir, "older"), newer = write_small_scene(dir, "newer", "0.24");
   const std::string newer_options = "--png-every 3 --contact-sheet 0";
   // The two runs as they look whole, each with a file of the user's beside it.
   ASSERT_EQ(run_shell(run_into(older, dir / "old")).exit_code, 0);
   ASSERT_EQ(run_shell(run_into(newer, dir / "new", newer_options)).exit_code, 0);
+  ASSERT_NE(read_bytes(dir / "old" / "frames.xmf"), read_bytes(dir / "new" / "frames.xmf"));
   for (const char* run : {"old", "new"}) write_text(dir / run / "notes.txt", "the user's own");
   // A run that recovers the folder and then fails before its first frame is written.
   const std::string recover = "ulimit -f 1; " + run_into(older, out);

@@ -58,7 +58,7 @@ TEST(Run, WritesHdf5AndPngsAndSaysWhere) {
   EXPECT_NE(result.output.find("45 frames in"), std::string::npos) << result.output;
   EXPECT_NE(result.output.find((out / "frames.h5").string()), std::string::npos) << result.output;
   EXPECT_NE(result.output.find("6 PNGs in"), std::string::npos) << result.output;
-  EXPECT_EQ(files_in(out), std::vector<std::string>({".bleedsim-manifest", "frames.h5", "png"}));
+  EXPECT_EQ(files_in(out), std::vector<std::string>({".bleedsim-manifest", "frames.h5", "frames.xmf", "png"}));
   EXPECT_EQ(files_in(out / "png"),
             std::vector<std::string>({"frame_000000.png", "frame_000010.png", "frame_000020.png",
                                       "frame_000030.png", "frame_000040.png", "frame_000044.png"}));
@@ -84,6 +84,8 @@ TEST(Run, WritesAContactSheetOfTheFramesAskedFor) {
                                    "' --backend cpu --no-hdf5 --contact-sheet 3 --out '" + out.string() + "'");
   ASSERT_EQ(result.exit_code, 0) << result.output;
   EXPECT_NE(result.output.find("contact_sheet.png"), std::string::npos) << result.output;
+  EXPECT_EQ(files_in(out), std::vector<std::string>({".bleedsim-manifest", "contact_sheet.png"}))
+      << "--no-hdf5 writes neither frames.h5 nor its description, frames.xmf";
   // Three 160 × 120 frames (small enough to stay whole) in a 2 × 2 grid with 4 px gutters.
   EXPECT_EQ(png_size(out / "contact_sheet.png"), std::make_pair(2 * 160 + 3 * 4, 2 * 120 + 3 * 4));
 }
@@ -127,20 +129,21 @@ TEST(Run, TheSameSceneTwiceGivesByteIdenticalFiles) {
     EXPECT_EQ(result.output, "") << "--quiet printed something";
   }
   EXPECT_EQ(read_bytes(dir / "a/frames.h5"), read_bytes(dir / "b/frames.h5"));
+  EXPECT_EQ(read_bytes(dir / "a/frames.xmf"), read_bytes(dir / "b/frames.xmf"));
   for (const std::string& png : files_in(dir / "a/png"))
     EXPECT_EQ(read_bytes(dir / "a/png" / png), read_bytes(dir / "b/png" / png)) << png;
 }
 
 TEST(Run, AnyNumberOfOutputThreadsWritesTheSameBytes) {
   // Frames encoded on one worker, one after another, and on six, several frames at once and out of
-  // order: the same frames.h5, PNGs (frames and views) and contact sheets, byte for byte.
+  // order: the same frames.h5, frames.xmf, PNGs (frames and views) and contact sheets, byte for byte.
   const fs::path dir = scratch_folder(), toml = short_turbinate(dir);
   for (const char* threads : {"1", "6"}) {
     const CliResult result = run_cli("run '" + toml.string() + "' --backend cpu --png-every 3 --contact-sheet 4 -q " +
                                      "--output-threads " + threads + " --out '" + (dir / threads).string() + "'");
     ASSERT_EQ(result.exit_code, 0) << result.output;
   }
-  for (const char* file : {"frames.h5", "contact_sheet.png", "view_contact_sheet.png"})
+  for (const char* file : {"frames.h5", "frames.xmf", "contact_sheet.png", "view_contact_sheet.png"})
     EXPECT_EQ(read_bytes(dir / "1" / file), read_bytes(dir / "6" / file)) << file;
   EXPECT_EQ(files_in(dir / "1/png").size(), 8u);  // frames 0, 3, 6 and 9, each with its view
   EXPECT_EQ(files_in(dir / "1/png"), files_in(dir / "6/png"));
@@ -185,12 +188,18 @@ TEST(Run, AnInterruptedRunKeepsEveryFrameItFinished) {
   EXPECT_NE(result.output.find("exit=130"), std::string::npos) << result.output;
   EXPECT_NE(result.output.find("interrupted after"), std::string::npos) << result.output;
   ASSERT_TRUE(fs::exists(out / "frames.h5")) << result.output;
-  EXPECT_EQ(files_in(out), std::vector<std::string>({".bleedsim-manifest", "frames.h5"}))
+  EXPECT_EQ(files_in(out), std::vector<std::string>({".bleedsim-manifest", "frames.h5", "frames.xmf"}))
       << "an interrupted run is whole, and swapped in";
   EXPECT_EQ(int_attribute(out / "frames.h5", "complete"), 0);
   const long long written = int_attribute(out / "frames.h5", "frames_written");
   EXPECT_GE(written, 1);
   EXPECT_LT(written, 600);
+  // frames.xmf describes the frames the file holds, one time each.
+  const std::string description = read_bytes(out / "frames.xmf");
+  long long times = 0;
+  for (std::size_t at = description.find("<Time "); at != std::string::npos; at = description.find("<Time ", at + 1))
+    ++times;
+  EXPECT_EQ(times, written);
 }
 
 TEST(Validate, DescribesTheRunWithoutWritingAnything) {
