@@ -11,7 +11,7 @@
 #include <functional>
 #include <stdexcept>
 
-#include "core/io/hdf5_handles.h"
+#include "core/io/hdf5_objects.h"
 #include "core/runtime/message_text.h"
 
 namespace bleedsim {
@@ -73,66 +73,15 @@ std::string describe_value(const StudySetting& s) {
 
 // ---- HDF5 -------------------------------------------------------------------------------------
 
-using Group = Hdf5Handle<H5Gclose>;
-using PropertyList = Hdf5Handle<H5Pclose>;
+using Group = Hdf5Objects::Group;
 
-// HDF5 handles closed on every path out (a group left open keeps its file open, and HDF5 crashes at
-// exit on a file whose close failed), errors as exceptions naming the file and the OS error;
-// objects carry no creation times, so the same data give the same bytes.
-class H5 {
- public:
-  explicit H5(std::string file) : check{std::move(file)} {
-    prepare_hdf5_for_writing();
-    dataset_create_ = untracked(H5P_DATASET_CREATE);
-    group_create_ = untracked(H5P_GROUP_CREATE);
-  }
-
-  Group group(hid_t parent, const std::string& name) const {
-    return Group{check(H5Gcreate2(parent, name.c_str(), H5P_DEFAULT, group_create_.get(), H5P_DEFAULT),
-                       "create group " + name)};
-  }
-  void text(hid_t object, const std::string& name, const std::string& value) const {
-    const Hdf5Handle<H5Tclose> type{check(H5Tcopy(H5T_C_S1), "copy the string type")};
-    check(H5Tset_size(type.get(), H5T_VARIABLE), "size a string type");
-    check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "set a string character set");
-    const Hdf5Handle<H5Sclose> space{check(H5Screate(H5S_SCALAR), "create a dataspace")};
-    const Hdf5Handle<H5Aclose> attribute{
-        check(H5Acreate2(object, name.c_str(), type.get(), space.get(), H5P_DEFAULT, H5P_DEFAULT),
-              "create attribute " + name)};
-    const char* chars = value.c_str();
-    check(H5Awrite(attribute.get(), type.get(), &chars), "write attribute " + name);
-  }
-  // A dataset of doubles, rows × columns (columns 0: one dimension).
-  void numbers(hid_t group, const std::string& name, const std::vector<double>& values, std::size_t columns = 0,
-               const std::string& unit = "") const {
-    const hsize_t dims[2] = {columns ? values.size() / columns : values.size(), columns};
-    const Hdf5Handle<H5Sclose> space{check(H5Screate_simple(columns ? 2 : 1, dims, nullptr), "create a dataspace")};
-    const Hdf5Handle<H5Dclose> set{check(H5Dcreate2(group, name.c_str(), H5T_IEEE_F64LE, space.get(), H5P_DEFAULT,
-                                                    dataset_create_.get(), H5P_DEFAULT),
-                                         "create dataset " + name)};
-    if (!values.empty())
-      check(H5Dwrite(set.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()),
-            "write dataset " + name);
-    if (!unit.empty()) text(set.get(), "unit", unit);
-  }
-  // Estimates as rows of (value, lo, hi).
-  void estimates(hid_t group, const std::string& name, const std::vector<Estimate>& rows, const std::string& unit = "") const {
-    std::vector<double> values;
-    for (const Estimate& e : rows) values.insert(values.end(), {e.value, e.lo, e.hi});
-    numbers(group, name, values, 3, unit);
-  }
-
-  const Hdf5Checker check;
-
- private:
-  PropertyList untracked(hid_t plist_class) const {
-    PropertyList plist{check(H5Pcreate(plist_class), "create a property list")};
-    check(H5Pset_obj_track_times(plist.get(), 0), "turn off object time tracking");
-    return plist;
-  }
-
-  PropertyList dataset_create_, group_create_;
-};
+// Estimates as rows of (value, lo, hi).
+void estimates(const Hdf5Objects& h5, hid_t group, const std::string& name, const std::vector<Estimate>& rows,
+               const std::string& unit = "") {
+  std::vector<double> values;
+  for (const Estimate& e : rows) values.insert(values.end(), {e.value, e.lo, e.hi});
+  h5.numbers(group, name, values, 3, unit);
+}
 
 std::string numbered(std::size_t i) {
   char name[32];
@@ -146,7 +95,7 @@ std::vector<Estimate> rms_of(const std::vector<Distance>& distances) {
   return out;
 }
 
-void write_setting(const H5& h5, hid_t group, const SettingResult& s) {
+void write_setting(const Hdf5Objects& h5, hid_t group, const SettingResult& s) {
   h5.text(group, "knob", s.setting.knob);
   h5.text(group, "value", describe_value(s.setting));
   h5.text(group, "role", s.setting.role);
@@ -155,17 +104,17 @@ void write_setting(const H5& h5, hid_t group, const SettingResult& s) {
   for (std::size_t m = 0; m < metrics().size(); ++m) {
     const MetricInfo& info = metrics()[m];
     if (std::isnan(s.value[m].value)) continue;
-    h5.estimates(group, info.name, {s.value[m]}, info.unit);
-    h5.estimates(group, std::string(info.name) + "_distance", {s.distance[m].rms}, info.unit);
-    if (!s.curves[m].empty()) h5.estimates(group, std::string(info.name) + "_per_frame", s.curves[m], info.unit);
+    estimates(h5, group, info.name, {s.value[m]}, info.unit);
+    estimates(h5, group, std::string(info.name) + "_distance", {s.distance[m].rms}, info.unit);
+    if (!s.curves[m].empty()) estimates(h5, group, std::string(info.name) + "_per_frame", s.curves[m], info.unit);
   }
-  if (!s.pile_profile_mm.empty()) h5.estimates(group, "pile_profile_mm", s.pile_profile_mm, "mm");
+  if (!s.pile_profile_mm.empty()) estimates(h5, group, "pile_profile_mm", s.pile_profile_mm, "mm");
   const RunDistances& d = s.against_reference;
-  h5.estimates(group, "against_reference", {d.film_l1_mm, d.film_l2_mm, d.frame_psnr_db, d.stain_l1});
+  estimates(h5, group, "against_reference", {d.film_l1_mm, d.film_l2_mm, d.frame_psnr_db, d.stain_l1});
   h5.text(group, "against_reference_rows", "film_l1_mm, film_l2_mm, frame_psnr_db, stain_l1");
 }
 
-void write_ladder(const H5& h5, hid_t group, const LadderResult& ladder, const KnobCheck& check) {
+void write_ladder(const Hdf5Objects& h5, hid_t group, const LadderResult& ladder, const KnobCheck& check) {
   const Knob& knob = *find_knob(ladder.knob);
   h5.text(group, "changes", knob.trades);
   h5.text(group, "holds", knob.holds);
@@ -180,13 +129,13 @@ void write_ladder(const H5& h5, hid_t group, const LadderResult& ladder, const K
     const LadderMetric& lm = ladder.per_metric[m];
     if (lm.level_values.empty()) continue;
     const Group metric = h5.group(group, metrics()[m].name);
-    h5.estimates(metric.get(), "level_values", lm.level_values, metrics()[m].unit);
-    h5.estimates(metric.get(), "differences", rms_of(lm.fit.differences), metrics()[m].unit);
-    h5.estimates(metric.get(), "orders", lm.fit.orders);
+    estimates(h5, metric.get(), "level_values", lm.level_values, metrics()[m].unit);
+    estimates(h5, metric.get(), "differences", rms_of(lm.fit.differences), metrics()[m].unit);
+    estimates(h5, metric.get(), "orders", lm.fit.orders);
     h5.text(metric.get(), "statement", lm.fit.statement);
     h5.numbers(metric.get(), "asymptotic_from", {double(lm.fit.asymptotic_from)});
-    h5.estimates(metric.get(), "extrapolated", {lm.extrapolated}, metrics()[m].unit);
-    h5.estimates(metric.get(), "limit_distance", {lm.limit_distance}, metrics()[m].unit);
+    estimates(h5, metric.get(), "extrapolated", {lm.extrapolated}, metrics()[m].unit);
+    estimates(h5, metric.get(), "limit_distance", {lm.limit_distance}, metrics()[m].unit);
   }
 }
 
@@ -251,7 +200,7 @@ void write_ladders_csv(const std::string& path, const StudyResult& result) {
 void write_study_hdf5(const std::string& path, const Study& study, const StudyResult& result,
                       const std::vector<std::pair<std::string, std::string>>& attributes) {
   const std::string partial = path + ".partial";
-  const H5 h5(partial);
+  const Hdf5Objects h5(partial);
   Hdf5Handle<H5Fclose> handle{h5.check(H5Fcreate(partial.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), "create the file")};
   const hid_t file = handle.get();
   // Every object in the file is closed when this block ends, so the file really closes with it.
@@ -272,11 +221,11 @@ void write_study_hdf5(const std::string& path, const Study& study, const StudyRe
 
     const Group floor = h5.group(file, "noise_floor");
     const RunDistances& d = result.noise_floor;
-    h5.estimates(floor.get(), "between_seeds", {d.film_l1_mm, d.film_l2_mm, d.frame_psnr_db, d.stain_l1});
+    estimates(h5, floor.get(), "between_seeds", {d.film_l1_mm, d.film_l2_mm, d.frame_psnr_db, d.stain_l1});
     h5.text(floor.get(), "between_seeds_rows", "film_l1_mm, film_l2_mm, frame_psnr_db, stain_l1");
     for (std::size_t m = 0; m < metrics().size(); ++m)
       if (!std::isnan(result.seed_spread[m].value))
-        h5.estimates(floor.get(), std::string(metrics()[m].name) + "_seed_spread", {result.seed_spread[m]}, metrics()[m].unit);
+        estimates(h5, floor.get(), std::string(metrics()[m].name) + "_seed_spread", {result.seed_spread[m]}, metrics()[m].unit);
 
     const Group settings = h5.group(file, "settings");
     for (std::size_t i = 0; i < result.settings.size(); ++i) {
