@@ -66,6 +66,9 @@ int info_command();
 // "text", "json" or "markdown".
 int params_command(const std::string& format);
 int trace_info_command(const std::string& path, double max_repair_gap_ms);
+// Each scenario's trace through its haptic loop, contact by contact (docs/haptics.md, "Force quality");
+// `overrides` as load_scenario's.
+int trace_quality_command(const std::vector<std::string>& scenarios, const std::vector<std::string>& overrides);
 
 struct SynthOptions {
   std::string out;

@@ -252,6 +252,26 @@ Command add_trace_info_command(CLI::App& trace) {
   return {command, [given] { return trace_info_command(given->path, given->repair_gap_ms); }};
 }
 
+Command add_trace_quality_command(CLI::App& trace) {
+  struct Given {
+    std::vector<std::string> scenarios;
+    std::vector<std::string> overrides;
+  };
+  const auto given = std::make_shared<Given>();
+  CLI::App* command = trace.add_subcommand(
+      "quality", "the force each scenario's trace renders, contact by contact: depth, rise time, force rate, power "
+                 "above 30 Hz, overshoot, passivity margin D - W, ticks at the cap (docs/haptics.md)");
+  command->add_option("scenarios", given->scenarios,
+                      "scenario files (.toml) with a [haptics] trace: the scene gives the force (surface or mesh, "
+                      "spring, damper, cap), the trace the motion")
+      ->required();
+  command->add_option("--set", given->overrides,
+                      "table.key=value (TOML) over every scenario's, e.g. scene.duration_s=8 to play a trace to "
+                      "its end; repeat for more")
+      ->allow_extra_args(false);
+  return {command, [given] { return trace_quality_command(given->scenarios, given->overrides); }};
+}
+
 // Ranges are checked by synthesize_trace, which names the option at fault.
 Command add_trace_synth_command(CLI::App& trace) {
   const auto synth = std::make_shared<SynthOptions>();
@@ -291,7 +311,8 @@ Command add_trace_synth_command(CLI::App& trace) {
 Command add_trace_command(CLI::App& app) {
   CLI::App* command = app.add_subcommand("trace", "recorded Falcon stylus traces (docs/traces.md)");
   command->require_subcommand(1);
-  const std::vector<Command> subcommands = {add_trace_info_command(*command), add_trace_synth_command(*command)};
+  const std::vector<Command> subcommands = {add_trace_info_command(*command), add_trace_quality_command(*command),
+                                            add_trace_synth_command(*command)};
   return {command, [subcommands] { return run_chosen(subcommands); }};
 }
 

@@ -8,6 +8,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <stdexcept>
 #include <string>
@@ -21,7 +22,9 @@
 #include "cli/output_queue.h"
 #include "cli/progress.h"
 #include "core/effects/particles/particle_model.h"
+#include "core/haptics/contact_quality.h"
 #include "core/io/contact_sheet.h"
+#include "core/io/hdf5_haptic_quality.h"
 #include "core/io/hdf5_writer.h"
 #include "core/io/scenario.h"
 #include "core/io/xdmf_writer.h"
@@ -264,6 +267,8 @@ struct RunTally {
   // with the frames before it kept, and leaves the folder's last whole run as it was.
   long written = 0;
   long pngs = 0;  // PNG files written, counted on the output's writer thread
+  // The force's quality over the ticks made, for a scene that replays a trace: /haptics/quality.
+  std::optional<ContactQualityMeter> quality;
 };
 
 // The frames, one after another until the last or an interrupt, each queued for its files as it is
@@ -280,6 +285,8 @@ void make_frames(Simulation& sim, const std::vector<FieldLayout>& specs, OutputQ
       to_host.copy(k);
       tally.frame_seconds.push_back(seconds_since(step_start));
       tally.simulate_s += tally.frame_seconds.back();
+      if (tally.quality)
+        for (const HapticTick& tick : sim.haptic_ticks()) tally.quality->add(tick);
       tally.tick_seconds.insert(tally.tick_seconds.end(), sim.haptic_tick_seconds().begin(),
                                 sim.haptic_tick_seconds().end());
       progress.update(k + 1);
@@ -311,6 +318,7 @@ RunTally write_run(const RunOptions& options, const Scenario& scenario, Simulati
   const long frames = s.frame_count();
   const std::vector<FieldLayout> specs = fields_to_write(sim, scenario.output.fields);
   RunTally tally;
+  if (s.trace && options.hdf5) tally.quality.emplace(*s.haptics);
   try {
     std::unique_ptr<Hdf5FrameWriter> writer;
     std::unique_ptr<XdmfWriter> xdmf;
@@ -333,6 +341,10 @@ RunTally write_run(const RunOptions& options, const Scenario& scenario, Simulati
     progress.clear();
     if (writer) writer->finish(tally.written == frames);
     if (xdmf) xdmf->write(files.partial("frames.xmf").string());
+    if (tally.quality) {
+      tally.quality->finish();
+      write_haptic_quality(files.partial("frames.h5").string(), *tally.quality);
+    }
     // An interrupted run's sheet shows the frames it reached; the cells after stay dark.
     if (sheets.panel) sheets.panel->write(files.partial("contact_sheet.png").string());
     if (sheets.view) sheets.view->write(files.partial("view_contact_sheet.png").string());

@@ -9,7 +9,9 @@
 per-element arrays such as particle state or counters, (T, N[, C]), with no image attributes.
 --haptics expects the haptic channel of that many 1 kHz ticks under /haptics, and checks what any
 channel must hold: tick n at n / 1000 s; the force along the surface normal only, within
-[0, --max-force] N (default the Falcon's 8.9 N), zero out of contact; cutting only in contact.
+[0, --max-force] N (default the Falcon's 8.9 N), zero out of contact; cutting only in contact; and
+/haptics/quality, the force's quality per contact, whose contacts, depths and peak forces must be the
+channel's own.
 
 The layout is docs/output-format.md. Prints one line per failed check and exits 1 on any
 failure; otherwise prints a one-line summary and exits 0. Needs h5py and numpy (Debian's
@@ -170,6 +172,69 @@ def check_haptics(check, file, ticks, max_force):
     check.expect(not force[~contact].any() and not columns["penetration"][~contact].any(),
                  "/haptics: force or penetration out of contact")
     check.expect(not (columns["cutting"].astype(bool) & ~contact).any(), "/haptics/cutting: cuts out of contact")
+    check_quality(check, file, columns)
+
+
+QUALITY_PER_CONTACT = {"first_tick": (np.int64, ()), "last_tick": (np.int64, ()), "released": (np.int64, ()),
+                       "max_penetration": (np.float64, ()), "peak_force": (np.float64, ()),
+                       "rise_time": (np.float64, ()), "force_rate": (np.float64, (3,)),
+                       "oscillation_rms": (np.float64, ()), "oscillation_share": (np.float64, ()),
+                       "overshoot": (np.float64, ()), "margin_end": (np.float64, ()), "worst_margin": (np.float64, ()),
+                       "worst_margin_tick": (np.int64, ()), "ticks_at_force_limit": (np.int64, ()),
+                       "unavailable": (object, ())}
+QUALITY_ATTRIBUTES = ("cutoff_hz", "stiffness_N_per_m", "max_force_N", "device_damping_Ns_per_m")
+QUALITY_OPTIONAL = {"rise_time": "rise_time", "oscillation_rms": "oscillation_rms",
+                    "oscillation_share": "oscillation_share", "worst_margin": "worst_margin"}
+
+
+def contact_runs(contact):
+    """The contacts as the docs define them: maximal runs of ticks in contact, (first, last)."""
+    edges = np.diff(np.concatenate(([0], contact.astype(np.int8), [0])))
+    return list(zip(np.flatnonzero(edges == 1), np.flatnonzero(edges == -1) - 1))
+
+
+def check_quality(check, file, columns):
+    """/haptics/quality against the channel beside it: its contacts are the channel's runs of contact,
+    their depth and peak force the channel's largest, the margin zero out of contact, a metric NaN
+    exactly where the contact says why it lacks it."""
+    group = file.get("/haptics/quality")
+    if not check.expect(isinstance(group, h5py.Group), "/haptics/quality: missing (or not a group)"):
+        return
+    for name in QUALITY_ATTRIBUTES:
+        check.expect(np.isscalar(group.attrs.get(name)), f"/haptics/quality: attribute {name} missing")
+    runs = contact_runs(columns["contact"].astype(bool))
+    q = {}
+    for name, (dtype, row) in QUALITY_PER_CONTACT.items():
+        node = dataset(check, file, "/haptics/quality/" + name)
+        if node is None:
+            return
+        if not check.expect((node.dtype == dtype or (dtype is object and node.dtype.kind == "O"))
+                            and node.shape == (len(runs),) + row,
+                            f"{node.name}: {node.dtype} {node.shape}, expected {(len(runs),) + row} for "
+                            f"{len(runs)} contacts"):
+            return
+        q[name] = node[()]
+    margin = dataset(check, file, "/haptics/quality/margin")
+    ticks = columns["time"].size
+    if margin is None or not check.expect(margin.shape == (ticks,), f"{margin.name}: {margin.shape}, expected ({ticks},)"):
+        return
+    margin = margin[()]
+    contact = columns["contact"].astype(bool)
+    check.expect(not margin[~contact].any(), "/haptics/quality/margin: non-zero out of contact")
+    check.expect([(int(a), int(b)) for a, b in zip(q["first_tick"], q["last_tick"])] == [(int(a), int(b)) for a, b in runs],
+                 "/haptics/quality: first_tick/last_tick are not the channel's runs of contact")
+    force = np.linalg.norm(columns["force"], axis=1)
+    for i, (a, b) in enumerate(runs):
+        check.expect(q["max_penetration"][i] == columns["penetration"][a:b + 1].max(),
+                     f"/haptics/quality/max_penetration[{i}]: not the contact's deepest tick")
+        check.expect(q["peak_force"][i] == force[a:b + 1].max(), f"/haptics/quality/peak_force[{i}]: not its largest force")
+        check.expect(bool(q["released"][i]) == (b + 1 < ticks), f"/haptics/quality/released[{i}]: wrong")
+        check.expect(q["force_rate"][i][0] <= q["force_rate"][i][1] <= q["force_rate"][i][2],
+                     f"/haptics/quality/force_rate[{i}]: p50, p99, max out of order")
+        why = text(q["unavailable"][i]) or ""
+        for name, label in QUALITY_OPTIONAL.items():
+            check.expect(np.isnan(q[name][i]) == (label + ":" in why),
+                         f"/haptics/quality/{name}[{i}]: NaN where no reason is given, or a reason for a value")
 
 
 def check_root(check, file, frames):

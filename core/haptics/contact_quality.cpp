@@ -6,6 +6,17 @@
 
 namespace bleedsim {
 
+std::vector<std::pair<std::string, std::string>> unavailable_metrics(const ContactQuality& c) {
+  std::vector<std::pair<std::string, std::string>> missing;
+  const std::pair<const char*, const Metric*> metrics[] = {{"rise_time", &c.rise_time_s},
+                                                          {"oscillation_rms", &c.oscillation.rms_above_N},
+                                                          {"oscillation_share", &c.oscillation.share_above},
+                                                          {"worst_margin", &c.worst_margin_J}};
+  for (const auto& [name, metric] : metrics)
+    if (!metric->available()) missing.emplace_back(name, metric->unavailable);
+  return missing;
+}
+
 ContactQualityMeter::ContactQualityMeter(const HapticParams& params) : params_(params) {}
 
 void ContactQualityMeter::add(const HapticTick& tick) {

@@ -8,6 +8,8 @@
 // Fed tick by tick, as the run makes them; it keeps the ticks of the contact under way only, and one
 // number per tick (the energy margin) for the plot.
 #include <cstdint>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -33,6 +35,9 @@ struct ContactQuality {
 
   std::int64_t ticks() const { return last_tick - first_tick + 1; }
 };
+
+// The metrics this contact lacks, each by its name in the run's file (docs/output-format.md) with why.
+std::vector<std::pair<std::string, std::string>> unavailable_metrics(const ContactQuality& contact);
 
 class ContactQualityMeter {
  public:

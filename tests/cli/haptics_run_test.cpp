@@ -1,8 +1,9 @@
-// bleedsim run on scenarios that replay a Falcon trace, as a user runs them: the haptic channel in
-// the HDF5 file, the budgets in the summary, and every kind of bad trace refused with its line and
-// exit 2 before anything is written.
+// bleedsim run and bleedsim trace quality on scenarios that replay a Falcon trace, as a user runs
+// them: the haptic channel and its quality in the HDF5 file, the budgets in the summary, the quality
+// table, and every kind of bad trace refused with its line and exit 2 before anything is written.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <string>
 
@@ -105,6 +106,15 @@ INSTANTIATE_TEST_SUITE_P(
                  ":7:15: z_m: 119 m is outside the Falcon's workspace"}),
     [](const ::testing::TestParamInfo<BadTrace>& info) { return std::string(info.param.name); });
 
+TEST_P(RunBadTrace, TraceQualityRefusesItAlike) {
+  const BadTrace& bad = GetParam();
+  const fs::path folder = scratch_folder();
+  const CliResult result = run_cli("trace quality '" + scenario_with_trace(folder, bad.text).string() + "'");
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  EXPECT_NE(result.output.find("bleedsim: error: " + (folder / "t.csv").string() + bad.message), std::string::npos)
+      << result.output;
+}
+
 TEST(RunHaptics, AMissingTraceIsPlacedAtTheScenarioKey) {
   const fs::path folder = scratch_folder();
   const fs::path scenario = scenario_with_trace(folder, "");
@@ -115,6 +125,73 @@ TEST(RunHaptics, AMissingTraceIsPlacedAtTheScenarioKey) {
                                (folder / "t.csv").string() + "': No such file or directory"),
             std::string::npos)
       << result.output;
+}
+
+// "  in contact N," of bleedsim validate's stylus line: the ticks in contact, counted by the loop alone.
+long validate_contact_ticks(const std::string& output) {
+  const std::size_t at = output.find("in contact ");
+  return at == std::string::npos ? -1 : std::stol(output.substr(at + 11));
+}
+
+TEST(TraceQuality, ItsContactsAreTheTicksValidateCountsInContact) {
+  // The golden strokes: three strokes, each one contact. The rows' tick counts (column 3) sum to the
+  // ticks validate finds in contact over the same run, and every contact is passive (k·T/2 + b = 1.2
+  // < 1.5 N·s/m: Colgate & Schenkel's bound holds for any motion).
+  const std::string scenario = source_dir() + "/scenarios/golden/falcon-strokes.toml";
+  const CliResult result = run_cli("trace quality '" + scenario + "'");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("falcon-strokes replays"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("k 800 N/m, b 0.8 N·s/m, cap 8 N; device damping B 1.5 N·s/m"), std::string::npos)
+      << result.output;
+  long rows = 0, ticks = 0;
+  for (int number = 1;; ++number) {
+    char prefix[16];
+    std::snprintf(prefix, sizeof prefix, "\n  %3d  ", number);
+    const std::size_t at = result.output.find(prefix);
+    if (at == std::string::npos) break;
+    ++rows;
+    ticks += std::stol(result.output.substr(result.output.find_first_of(" *", at + 26) + 1));
+  }
+  EXPECT_EQ(rows, 3) << result.output;
+  const CliResult validate = run_cli("validate '" + scenario + "'");
+  ASSERT_EQ(validate.exit_code, 0) << validate.output;
+  EXPECT_EQ(ticks, validate_contact_ticks(validate.output)) << result.output << validate.output;
+  EXPECT_NE(result.output.find("passive: D - W >= 0 at every tick of every contact"), std::string::npos) << result.output;
+}
+
+TEST(TraceQuality, AContactTooShortForAMetricSaysWhy) {
+  // Down 1 mm for one sample (one tick in contact), then above the surface again: no rise, too short
+  // for the spectrum; the run (0.1 s) ends above the tissue.
+  const fs::path folder = scratch_folder();
+  const fs::path scenario = scenario_with_trace(
+      folder, kMetadata + kHeader + "0.000,0.0,0.0,0.1210,0\n0.001,0.0,0.0,0.1190,0\n0.002,0.0,0.0,0.1210,0\n");
+  const CliResult result = run_cli("trace quality '" + scenario.string() + "'");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("contact 1, rise_time: a contact of 1 tick: the force has no rise to measure"),
+            std::string::npos)
+      << result.output;
+  EXPECT_NE(result.output.find("contact 1, oscillation_rms: a contact of 1 tick is shorter than one period of the 30 Hz "
+                               "cutoff (34 ticks)"),
+            std::string::npos)
+      << result.output;
+}
+
+TEST(TraceQuality, RefusesAScenarioWithoutATraceAndSettingsARunRefuses) {
+  const fs::path folder = scratch_folder();
+  write_text(folder / "plain.toml", "[scene]\nwidth_px = 32\nheight_px = 24\nwidth_mm = 32.0\nheight_mm = 24.0\nduration_s = 0.1\n[spread]\n");
+  const CliResult plain = run_cli("trace quality '" + (folder / "plain.toml").string() + "'");
+  EXPECT_EQ(plain.exit_code, 2) << plain.output;
+  EXPECT_NE(plain.output.find("bleedsim: error: " + (folder / "plain.toml").string() +
+                              ": haptics: the scenario replays no trace"),
+            std::string::npos)
+      << plain.output;
+  // Too stiff a spring for the device's damping: refused at its key, as a run refuses it.
+  const fs::path scenario = scenario_with_trace(folder, kMetadata + kHeader + kTwoSamples);
+  const CliResult stiff = run_cli("trace quality '" + scenario.string() + "' --set haptics.stiffness_N_per_m=3000");
+  EXPECT_EQ(stiff.exit_code, 2) << stiff.output;
+  EXPECT_NE(stiff.output.find("haptics.stiffness_N_per_m: k·T/2 + |b| = 1.5 + 0.5 = 2 N·s/m is not below"),
+            std::string::npos)
+      << stiff.output;
 }
 
 }  // namespace
