@@ -23,17 +23,21 @@ ParamProblem origin_at_centre(P& h, const Written& written, const Scene& scene) 
 ParamProblem passive(const P& h, const Scene&) { return passivity_problem(h); }
 
 // The spring's share of passivity's demand, k·T/2: what sampling at T adds.
-double spring_share(const P& h) { return h.stiffness_N_per_m * kHapticPeriod_s / 2; }
+double spring_share(double stiffness_N_per_m) { return stiffness_N_per_m * kHapticPeriod_s / 2; }
 
 }  // namespace
 
-double passivity_demand_Ns_per_m(const HapticParams& p) { return spring_share(p) + std::abs(p.damping_Ns_per_m); }
+double passivity_demand_Ns_per_m(const HapticParams& p) { return spring_share(p.stiffness_N_per_m) + std::abs(p.damping_Ns_per_m); }
+
+double passive_damping_limit_Ns_per_m(double stiffness_N_per_m, double device_damping_Ns_per_m) {
+  return device_damping_Ns_per_m - spring_share(stiffness_N_per_m);
+}
 
 ParamProblem passivity_problem(const HapticParams& p) {
   const double needed = passivity_demand_Ns_per_m(p);
   if (needed < p.device_damping_Ns_per_m) return {};
-  const char* key = spring_share(p) >= p.device_damping_Ns_per_m ? "stiffness_N_per_m" : "damping_Ns_per_m";
-  return {key, "k·T/2 + |b| = " + format_number(spring_share(p)) + " + " + format_number(p.damping_Ns_per_m) +
+  const char* key = spring_share(p.stiffness_N_per_m) >= p.device_damping_Ns_per_m ? "stiffness_N_per_m" : "damping_Ns_per_m";
+  return {key, "k·T/2 + |b| = " + format_number(spring_share(p.stiffness_N_per_m)) + " + " + format_number(p.damping_Ns_per_m) +
                    " = " + format_number(needed) + " N·s/m is not below the device's damping of " +
                    format_number(p.device_damping_Ns_per_m) +
                    " N·s/m: at 1 kHz the contact could feed energy into the stylus and buzz (passivity "

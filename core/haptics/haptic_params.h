@@ -14,6 +14,11 @@ const ParamTable<HapticParams>& haptic_table();
 // and damper b sampled every T are passive when b_device > k·T/2 + |b|): k·T/2 + |b|, in N·s/m.
 double passivity_demand_Ns_per_m(const HapticParams& params);
 
+// The edge of the Z-width at 1 kHz (the stiffness–damping region rendered passively; Colgate & Schenkel,
+// docs/haptics.md "Z-width"): the largest |b| a spring k renders passively with the device's damping
+// B, B − k·T/2. Below zero no damping is passive: the spring alone asks more than B (k > 2B/T).
+double passive_damping_limit_Ns_per_m(double stiffness_N_per_m, double device_damping_Ns_per_m);
+
 // Why these contact parameters cannot be rendered passively at 1 kHz, blaming stiffness_N_per_m
 // or damping_Ns_per_m; none when they can.
 ParamProblem passivity_problem(const HapticParams& params);
