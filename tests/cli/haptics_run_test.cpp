@@ -81,14 +81,18 @@ const std::string kTwoSamples = "0.000,0.0,0.0,0.1200,0\n0.001,0.0,0.0,0.1190,1\
 
 class RunBadTrace : public ::testing::TestWithParam<BadTrace> {};
 
+// bleedsim run, and bleedsim trace quality alike.
 TEST_P(RunBadTrace, ExitsTwoNamingTheLineAndWritesNothing) {
   const BadTrace& bad = GetParam();
   const fs::path folder = scratch_folder();
-  const CliResult result = run_cli("run '" + scenario_with_trace(folder, bad.text).string() + "' --backend cpu");
-  EXPECT_EQ(result.exit_code, 2) << result.output;
-  EXPECT_NE(result.output.find("bleedsim: error: " + (folder / "t.csv").string() + bad.message), std::string::npos)
-      << result.output;
-  EXPECT_FALSE(fs::exists(folder / "out")) << "a bad trace must leave no output";
+  const std::string scenario = "'" + scenario_with_trace(folder, bad.text).string() + "'";
+  for (const std::string& command : {"run " + scenario + " --backend cpu", "trace quality " + scenario}) {
+    const CliResult result = run_cli(command);
+    EXPECT_EQ(result.exit_code, 2) << command << "\n" << result.output;
+    EXPECT_NE(result.output.find("bleedsim: error: " + (folder / "t.csv").string() + bad.message), std::string::npos)
+        << command << "\n" << result.output;
+    EXPECT_FALSE(fs::exists(folder / "out")) << "a bad trace must leave no output";
+  }
 }
 
 INSTANTIATE_TEST_SUITE_P(
@@ -105,15 +109,6 @@ INSTANTIATE_TEST_SUITE_P(
         BadTrace{"OutsideTheWorkspace", kMetadata + kHeader + kTwoSamples + "0.002,0.0,0.0,119.0,1\n",
                  ":7:15: z_m: 119 m is outside the Falcon's workspace"}),
     [](const ::testing::TestParamInfo<BadTrace>& info) { return std::string(info.param.name); });
-
-TEST_P(RunBadTrace, TraceQualityRefusesItAlike) {
-  const BadTrace& bad = GetParam();
-  const fs::path folder = scratch_folder();
-  const CliResult result = run_cli("trace quality '" + scenario_with_trace(folder, bad.text).string() + "'");
-  EXPECT_EQ(result.exit_code, 2) << result.output;
-  EXPECT_NE(result.output.find("bleedsim: error: " + (folder / "t.csv").string() + bad.message), std::string::npos)
-      << result.output;
-}
 
 TEST(RunHaptics, AMissingTraceIsPlacedAtTheScenarioKey) {
   const fs::path folder = scratch_folder();
