@@ -4,6 +4,7 @@
 #include "core/runtime/build_info.h"
 #include "core/runtime/input_error.h"
 #include "python/bindings.h"
+#include "python/device_field.h"
 
 PYBIND11_MODULE(bleedsim, module) {
   module.doc() =
@@ -14,4 +15,5 @@ PYBIND11_MODULE(bleedsim, module) {
   pybind11::register_exception<bleedsim::InputError>(module, "InputError", PyExc_ValueError);
   bleedsim::python::bind_scenario(module);
   bleedsim::python::bind_simulation(module);
+  bleedsim::python::bind_device_field(module);
 }

@@ -66,6 +66,9 @@ class Simulation {
   std::vector<std::string> field_names() const;
   // Throws std::out_of_range for a name the scene does not produce.
   FieldView field(const std::string& name) const;
+  // Waits until the device has finished what step() launched, so that code on another stream (a
+  // renderer's, a DLPack consumer's) reads field(name).data whole. Nothing to wait for on the cpu.
+  void synchronize() { backend_->synchronize(); }
   std::vector<std::uint8_t> copy_field(const std::string& name) const;
   void copy_field(const std::string& name, void* host_destination) const;
   // For copying fields out while the next frames compute (Download::add of field(name).data into
