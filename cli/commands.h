@@ -28,6 +28,7 @@ struct RunOptions {
   bool hdf5 = true;
   bool quiet = false;
   int output_threads = 0;              // threads encoding the frames; 0: one per hardware thread
+  std::vector<std::string> overrides;  // --set: load_scenario's ("table.key=value" each)
 };
 
 int run_command(const RunOptions& options);
@@ -59,7 +60,8 @@ struct StudyMergeOptions {
 };
 
 int study_merge_command(const StudyMergeOptions& options);
-int validate_command(const std::string& scenario);
+// `overrides` as load_scenario's.
+int validate_command(const std::string& scenario, const std::vector<std::string>& overrides);
 // `overrides`: load_scenario's ("table.key=value" each).
 int hash_command(const std::string& scenario, const BackendChoice& backend, const std::vector<std::string>& overrides);
 int info_command();

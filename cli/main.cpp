@@ -113,6 +113,14 @@ int study_on_ranks(const StudyOptions& study) {
   }
 }
 
+// --set table.key=value, repeatable: a value over the scenario file's, checked as if written there
+// (load_scenario's overrides; the Python module's dict). `what` says what it sets.
+void add_set_option(CLI::App& command, std::vector<std::string>& overrides,
+                    const std::string& what = "a value over the file's, checked as if written there; repeat for "
+                                              "more (the Python module's overrides, docs/python.md)") {
+  command.add_option("--set", overrides, "table.key=value (TOML): " + what)->allow_extra_args(false);
+}
+
 Command add_run_command(CLI::App& app) {
   struct Given {
     RunOptions run;
@@ -136,6 +144,7 @@ Command add_run_command(CLI::App& app) {
       ->check(CLI::Range(0, 4096))
       ->capture_default_str();
   command->add_flag("-q,--quiet", run.quiet, "print nothing but errors");
+  add_set_option(*command, run.overrides);
   return {command, [given] {
             given->run.backend = given->backend.choice();
             given->run.hdf5 = !given->no_hdf5;
@@ -144,10 +153,15 @@ Command add_run_command(CLI::App& app) {
 }
 
 Command add_validate_command(CLI::App& app) {
-  const auto scenario = std::make_shared<std::string>();
+  struct Given {
+    std::string scenario;
+    std::vector<std::string> overrides;
+  };
+  const auto given = std::make_shared<Given>();
   CLI::App* command = app.add_subcommand("validate", "check a scenario and describe it");
-  command->add_option("scenario", *scenario, "scenario file (.toml)")->required();
-  return {command, [scenario] { return validate_command(*scenario); }};
+  command->add_option("scenario", given->scenario, "scenario file (.toml)")->required();
+  add_set_option(*command, given->overrides);
+  return {command, [given] { return validate_command(given->scenario, given->overrides); }};
 }
 
 Command add_hash_command(CLI::App& app) {
@@ -161,10 +175,7 @@ Command add_hash_command(CLI::App& app) {
       app.add_subcommand("hash", "print each frame's per-field FNV-1a 64 hashes (writes no files)");
   command->add_option("scenario", given->scenario, "scenario file (.toml)")->required();
   add_backend_options(*command, given->backend);
-  command->add_option("--set", given->overrides,
-                      "table.key=value (TOML): a value over the file's, checked as if written there; repeat "
-                      "for more (the Python module's overrides, docs/python.md)")
-      ->allow_extra_args(false);
+  add_set_option(*command, given->overrides);
   return {command, [given] { return hash_command(given->scenario, given->backend.choice(), given->overrides); }};
 }
 
@@ -265,10 +276,8 @@ Command add_trace_quality_command(CLI::App& trace) {
                       "scenario files (.toml) with a [haptics] trace: the scene gives the force (surface or mesh, "
                       "spring, damper, cap), the trace the motion")
       ->required();
-  command->add_option("--set", given->overrides,
-                      "table.key=value (TOML) over every scenario's, e.g. scene.duration_s=8 to play a trace to "
-                      "its end; repeat for more")
-      ->allow_extra_args(false);
+  add_set_option(*command, given->overrides,
+                 "over every scenario's, e.g. scene.duration_s=8 to play a trace to its end; repeat for more");
   return {command, [given] { return trace_quality_command(given->scenarios, given->overrides); }};
 }
 

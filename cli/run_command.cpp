@@ -72,7 +72,11 @@ std::vector<FieldLayout> fields_to_write(const Simulation& sim, const std::vecto
   return specs;
 }
 
-std::vector<std::pair<std::string, std::string>> provenance(const Simulation& sim, const Scenario& scenario) {
+// `overrides`: the --set lines the scenario was read with (its text is the file's, without them).
+std::vector<std::pair<std::string, std::string>> provenance(const Simulation& sim, const Scenario& scenario,
+                                                            const std::vector<std::string>& overrides) {
+  std::string sets;
+  for (const std::string& set : overrides) sets += set + "\n";
   return {{"bleedsim_version", version()},
           {"git_sha", git_sha()},
           {"backend", to_string(sim.backend().kind())},
@@ -80,7 +84,8 @@ std::vector<std::pair<std::string, std::string>> provenance(const Simulation& si
           {"build_flags", build_flags()},
           {"scene_name", sim.scene().name},
           {"scenario_path", scenario.path},
-          {"scenario_text", scenario.text}};
+          {"scenario_text", scenario.text},
+          {"scenario_overrides", sets}};
 }
 
 // What the replay will play: the samples read of the trace (as far as the run goes), their repairs,
@@ -134,7 +139,7 @@ std::runtime_error write_failure(const std::exception& e, long frames_done, cons
 
 // The scenario with what the command line says over its [output] table.
 Scenario scenario_for_run(const RunOptions& options) {
-  Scenario scenario = load_scenario(options.scenario);
+  Scenario scenario = load_scenario(options.scenario, ReadTissue::draw, options.overrides);
   OutputSpec& out = scenario.output;
   if (options.png_every) out.png_every = *options.png_every;
   if (options.contact_sheet) out.contact_sheet = *options.contact_sheet;
@@ -324,7 +329,7 @@ RunTally write_run(const RunOptions& options, const Scenario& scenario, Simulati
     std::unique_ptr<XdmfWriter> xdmf;
     if (options.hdf5) {
       writer = std::make_unique<Hdf5FrameWriter>(files.partial("frames.h5").string(), specs,
-                                                 provenance(sim, scenario), scenario.output.deflate_level,
+                                                 provenance(sim, scenario, options.overrides), scenario.output.deflate_level,
                                                  s.trace.has_value());
       xdmf = std::make_unique<XdmfWriter>("frames.h5", specs, s.domain.grid(), lifetime_steps(sim));
     }

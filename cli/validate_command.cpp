@@ -100,10 +100,10 @@ std::string memory_line(const Scene& scene, const Resolved& resolved, const Memo
 
 }  // namespace
 
-int validate_command(const std::string& scenario) {
+int validate_command(const std::string& scenario, const std::vector<std::string>& overrides) {
   // The tissue is not drawn, but a vessel map is read: the cuts' bleeding depends on it.
-  Scenario file = load_scenario(scenario, ReadTissue::header_only);
-  if (file.scene.effects.has<VesselParams>()) file = load_scenario(scenario);
+  Scenario file = load_scenario(scenario, ReadTissue::header_only, overrides);
+  if (file.scene.effects.has<VesselParams>()) file = load_scenario(scenario, ReadTissue::draw, overrides);
   const Scene& scene = file.scene;
   const Resolved resolved = resolve(scene);
   const OutputSpec& out = file.output;
@@ -111,6 +111,7 @@ int validate_command(const std::string& scenario) {
   std::string stages;
   for (const std::string& name : Pipeline::stage_names(scene)) stages += (stages.empty() ? "" : ", ") + name;
   std::printf("%s: valid\n", scenario.c_str());
+  for (const std::string& set : overrides) std::printf("  --set      %s\n", set.c_str());
   std::printf("  scene      %s\n", scene.name.c_str());
   std::printf("  domain     %d x %d px, %g x %g mm\n", d.width_px, d.height_px, d.width_mm, d.height_mm);
   std::printf("  time       %g s at %g Hz: %d frames\n", scene.duration_s, scene.frame_rate_hz,

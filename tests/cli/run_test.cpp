@@ -202,6 +202,70 @@ TEST(Run, AnInterruptedRunKeepsEveryFrameItFinished) {
   EXPECT_EQ(times, written);
 }
 
+// A text attribute of the file's root (variable-length UTF-8, as the writer makes them).
+std::string text_attribute(const fs::path& file, const char* name) {
+  const hid_t f = H5Fopen(file.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  const hid_t a = H5Aopen(f, name, H5P_DEFAULT);
+  const hid_t type = H5Tcopy(H5T_C_S1);
+  H5Tset_size(type, H5T_VARIABLE);
+  H5Tset_cset(type, H5T_CSET_UTF8);
+  char* value = nullptr;
+  H5Aread(a, type, &value);
+  const std::string text = value ? value : "<unread>";
+  H5free_memory(value);
+  H5Tclose(type);
+  H5Aclose(a);
+  H5Fclose(f);
+  return text;
+}
+
+// --set on a run: its frames are those of the file with the values written in, and the file's
+// provenance lists them (its scenario_text is the file's, without them).
+TEST(Run, SetValuesRunAsIfWrittenInTheFileAndTheRunRecordsThem) {
+  const fs::path dir = scratch_folder();
+  const std::string file = read_bytes(scenario("golden/spread-single.toml"));
+  std::string edited = file;
+  edited.replace(edited.find("duration_s = 1.5"), 16, "duration_s = 0.2");
+  edited.replace(edited.find("radius_mm = 4.0"), 15, "radius_mm = 2.5");
+  write_text(dir / "edited.toml", edited);
+  const CliResult set = run_cli("run '" + scenario("golden/spread-single.toml") +
+                                "' --backend cpu -q --png-every 0 --set scene.duration_s=0.2 --set spread.radius_mm=2.5 --out '" +
+                                (dir / "set").string() + "'");
+  ASSERT_EQ(set.exit_code, 0) << set.output;
+  const CliResult written = run_cli("run '" + (dir / "edited.toml").string() + "' --backend cpu -q --png-every 0 --out '" +
+                                    (dir / "written").string() + "'");
+  ASSERT_EQ(written.exit_code, 0) << written.output;
+  EXPECT_EQ(int_attribute(dir / "set" / "frames.h5", "frames_written"), 6);
+  EXPECT_EQ(dataset_bytes(dir / "set" / "frames.h5", "frame"), dataset_bytes(dir / "written" / "frames.h5", "frame"));
+  EXPECT_EQ(text_attribute(dir / "set" / "frames.h5", "scenario_overrides"), "scene.duration_s=0.2\nspread.radius_mm=2.5\n");
+  EXPECT_EQ(text_attribute(dir / "set" / "frames.h5", "scenario_text"), file);
+  EXPECT_EQ(text_attribute(dir / "written" / "frames.h5", "scenario_overrides"), "");
+}
+
+// A bad --set is refused as a file's bad value is, at its place among the --set (overrides:N:COLUMN)
+// with its key, before anything is written.
+TEST(Run, ABadSetIsRefusedAtItsPlaceAndNothingIsWritten) {
+  const fs::path out = scratch_folder() / "out";
+  const CliResult result = run_cli("run '" + scenario("golden/spread-single.toml") +
+                                   "' --backend cpu --set scene.duration_s=0.2 --set spread.radius_mm=-1 --out '" +
+                                   out.string() + "'");
+  EXPECT_EQ(result.exit_code, 2) << result.output;
+  EXPECT_NE(result.output.find("bleedsim: error: overrides:2:18: spread.radius_mm: must be greater than 0"),
+            std::string::npos)
+      << result.output;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+TEST(Validate, DescribesTheSceneWithItsSetValuesAndRefusesABadOne) {
+  const CliResult result = run_cli("validate '" + scenario("default.toml") + "' --set scene.duration_s=1");
+  ASSERT_EQ(result.exit_code, 0) << result.output;
+  EXPECT_NE(result.output.find("  --set      scene.duration_s=1\n"), std::string::npos) << result.output;
+  EXPECT_NE(result.output.find("  time       1 s at 30 Hz: 30 frames\n"), std::string::npos) << result.output;
+  const CliResult bad = run_cli("validate '" + scenario("default.toml") + "' --set particles.diamter_mm=0.1");
+  EXPECT_EQ(bad.exit_code, 2) << bad.output;
+  EXPECT_EQ(bad.output, "bleedsim: error: overrides:1:11: particles.diamter_mm: unknown key; did you mean 'diameter_mm'?\n");
+}
+
 TEST(Validate, DescribesTheRunWithoutWritingAnything) {
   const CliResult result = run_cli("validate '" + scenario("default.toml") + "'");
   ASSERT_EQ(result.exit_code, 0) << result.output;
