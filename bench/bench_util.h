@@ -3,6 +3,7 @@
 // where CUDA cannot run), and the benchmark groups that main() registers.
 #include <benchmark/benchmark.h>
 
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -24,6 +25,13 @@ inline std::unique_ptr<Backend> backend_or_skip(BackendKind kind, benchmark::Sta
   return make_cuda_backend();
 }
 
+// scenarios/<name>.toml, from the repository root where the benchmark runs there, else from the
+// source tree it was built from.
+inline std::string scenario_path(const std::string& name) {
+  const std::string here = "scenarios/" + name + ".toml";
+  return std::filesystem::exists(here) ? here : std::string(BLEEDSIM_SOURCE_DIR) + "/" + here;
+}
+
 // bench/particle_bench.cpp: the particle step in the settled-pile state. The piles it settles are
 // kept between benchmarks of one size; release them before main() returns, while the CUDA runtime
 // is still up.
@@ -40,5 +48,8 @@ void register_haptic_benchmarks();
 
 // bench/spread_bench.cpp: a frame's spread against the number of cuts made, most of them settled.
 void register_spread_benchmarks();
+
+// bench/live_loop_bench.cpp: the 1 kHz loop on its own thread, idle and beside a simulation.
+void register_live_loop_benchmarks();
 
 }  // namespace bleedsim

@@ -12,7 +12,6 @@
 // budgets (ticks only where the scene has a stylus). Run from the repository root (or with the
 // scenarios' folder at BLEEDSIM_SOURCE_DIR, as built).
 #include <chrono>
-#include <filesystem>
 #include <string>
 #include <vector>
 
@@ -58,11 +57,6 @@ void time_tick(benchmark::State& state) {
   const double per_tick_s = total_s / double(state.iterations()) / double(ticks);
   state.counters["tick_us"] = 1e6 * per_tick_s;
   state.counters["haptic_budget_%"] = 100.0 * per_tick_s / kHapticBudget_s;
-}
-
-std::string scenario_path(const std::string& name) {
-  const std::string here = "scenarios/" + name + ".toml";
-  return std::filesystem::exists(here) ? here : std::string(BLEEDSIM_SOURCE_DIR) + "/" + here;
 }
 
 void time_run(benchmark::State& state, BackendKind kind, const std::string& name) {

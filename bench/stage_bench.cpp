@@ -117,6 +117,7 @@ int main(int argc, char** argv) {
   bleedsim::register_frame_benchmarks();
   bleedsim::register_haptic_benchmarks();
   bleedsim::register_spread_benchmarks();
+  bleedsim::register_live_loop_benchmarks();
   benchmark::RunSpecifiedBenchmarks();
   bleedsim::release_particle_benchmarks();
   bleedsim::release_frame_benchmarks();
