@@ -27,6 +27,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <fstream>
@@ -147,7 +148,7 @@ struct LoopRun {
 // kLoopTicks ticks of `haptics` on a thread of its own, with the trace's stroke played over and over.
 LoopRun run_loop(const LoopCase& c, int pin_cpu, HapticLoop& haptics, const Trace& trace) {
   const std::int64_t trace_ticks =
-      std::int64_t((trace.samples.back().t_s - trace.samples.front().t_s) * kHapticRate_hz) + 1;
+      std::llround((trace.samples.back().t_s - trace.samples.front().t_s) * kHapticRate_hz) + 1;
   LoopRun run;
   std::thread loop_thread([&] {
     if (c.pin) run.pinned = pin_to_cpu(pin_cpu);
