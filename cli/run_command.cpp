@@ -363,8 +363,7 @@ RunTally write_run(const RunOptions& options, const Scenario& scenario, Simulati
 // What this run writes, by name in its folder (docs/output-format.md).
 std::vector<std::string> run_file_names(const RunOptions& options, const Scenario& scenario, const ContactSheets& sheets) {
   std::vector<std::string> names;
-  if (options.hdf5) names.push_back("frames.h5");
-  if (options.hdf5) names.push_back("frames.xmf");
+  if (options.hdf5) names.insert(names.end(), {"frames.h5", "frames.xmf"});
   if (scenario.output.png_every > 0) names.push_back("png");
   if (sheets.panel) names.push_back("contact_sheet.png");
   if (sheets.view) names.push_back("view_contact_sheet.png");
