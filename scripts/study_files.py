@@ -16,8 +16,10 @@ LADDER_COLUMNS = ("knob", "metric", "unit", "level", "value", "role", "status", 
                   "statement", "extrapolated", "extrapolated_lo", "extrapolated_hi", "limit_distance",
                   "limit_distance_lo", "limit_distance_hi", "seed_spread", "check")
 ROLES = ("reference", "scene", "ladder", "refinement", "noise_floor")
-# The distribution metrics after the field (film or stain), as the files name them.
-METRICS = ("front_mm", "covered_area_mm2", "volume_mm3", "pile_height_mm")
+# The distribution metrics after the field (film or stain), as the files name them: those measured
+# every frame (study.h5 holds their curves), then the run's rest time.
+PER_FRAME_METRICS = ("front_mm", "covered_area_mm2", "volume_mm3", "pile_height_mm")
+METRICS = PER_FRAME_METRICS + ("rest_s",)
 KNOB_NAME = re.compile(r"[A-Za-z0-9_.-]+")
 
 

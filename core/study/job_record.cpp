@@ -123,7 +123,7 @@ Writer data_section(const JobRecord& r) {
   w.u32(r.seed_index);
   w.u64(r.seed);
   w.text(r.status);
-  for (const std::vector<double>* series : {&r.front_mm, &r.covered_area_mm2, &r.volume_mm3, &r.pile_height_mm})
+  for (const std::vector<double>* series : {&r.front_mm, &r.covered_area_mm2, &r.volume_mm3, &r.pile_height_mm, &r.fastest_mm_s})
     w.list(*series, &Writer::f64);
   w.i32(r.grid_width);
   w.i32(r.grid_height);
@@ -165,7 +165,7 @@ JobRecord deserialize(const std::vector<std::uint8_t>& bytes) {
   r.seed_index = data.u32("the seed index");
   r.seed = data.u64("the seed");
   r.status = data.text("the status");
-  for (std::vector<double>* series : {&r.front_mm, &r.covered_area_mm2, &r.volume_mm3, &r.pile_height_mm})
+  for (std::vector<double>* series : {&r.front_mm, &r.covered_area_mm2, &r.volume_mm3, &r.pile_height_mm, &r.fastest_mm_s})
     *series = data.list<double>(&Reader::f64, 8, "a per-frame measure");
   r.grid_width = data.i32("the grid width");
   r.grid_height = data.i32("the grid height");

@@ -15,7 +15,7 @@ namespace bleedsim {
 
 // "BSJOBREC" and the format's version: a change of the layout below is a new version.
 constexpr char kJobRecordMagic[8] = {'B', 'S', 'J', 'O', 'B', 'R', 'E', 'C'};
-constexpr std::uint32_t kJobRecordVersion = 1;
+constexpr std::uint32_t kJobRecordVersion = 2;  // 2: the fastest particle's speed, every frame
 
 struct JobRecord {
   // What ran: the study it belongs to (Study::key()), the setting and the seed.
@@ -24,7 +24,7 @@ struct JobRecord {
   std::uint64_t seed = 0;    // the physics' seed it ran with
   std::string status = "ok";  // or "refused: <why>" (then nothing below but the timing's backend)
   // Every frame's measures (core/study/study_metrics.h; NaN in a scene without a film).
-  std::vector<double> front_mm, covered_area_mm2, volume_mm3, pile_height_mm;
+  std::vector<double> front_mm, covered_area_mm2, volume_mm3, pile_height_mm, fastest_mm_s;
   // The snapshot frames' fields on the common grid, one snapshot after another: film and stain one
   // value per cell (empty where the scene lacks them), colour three.
   std::int32_t grid_width = 0, grid_height = 0;

@@ -324,9 +324,12 @@ std::vector<std::uint8_t> Study::run_job(std::size_t j, BackendKind backend, int
   // The metrics read what the blend lays over the tissue.
   const char* film = blend_film_field(s);
   const char* stain = blend_stain_field(s);
+  const bool particles = s.effects.has<ParticleParams>();
+  const std::uint32_t lifetime_steps = particles ? resolve_particles(s).model.lifetime.steps : 0;
   std::size_t snapshot = 0;
   for (int k = 0; k < frames; ++k) {
-    FrameFields fields{s.domain.width_px, s.domain.height_px, s.domain.width_mm, s.domain.height_mm, {}, {}, {}};
+    FrameFields fields{s.domain.width_px, s.domain.height_px, s.domain.width_mm, s.domain.height_mm, {}, {}, {}, {}, {},
+                       lifetime_steps};
     // Compute per frame: the step and the copy to the host of what a renderer would read.
     const Clock::time_point start = Clock::now();
     sim->step();
@@ -334,11 +337,16 @@ std::vector<std::uint8_t> Study::run_job(std::size_t j, BackendKind backend, int
     if (stain) fields.stain = copy_as<float>(*sim, stain);
     fields.rgba = sim->copy_field("frame");
     r.frame_seconds.push_back(std::chrono::duration<double>(Clock::now() - start).count());
+    if (particles) {
+      fields.velocity = copy_as<float>(*sim, "particles/velocity");
+      fields.age = copy_as<std::uint32_t>(*sim, "particles/age");
+    }
     const FrameMeasures m = measure_frame(fields, film_on_grid(fields, grid_w_, grid_h_), grid_w_, grid_h_, gravity_x, gravity_y);
     r.front_mm.push_back(m.front_mm);
     r.covered_area_mm2.push_back(m.covered_area_mm2);
     r.volume_mm3.push_back(m.volume_mm3);
     r.pile_height_mm.push_back(m.pile_height_mm);
+    r.fastest_mm_s.push_back(m.fastest_mm_s);
     if (snapshot < snapshots_.size() && snapshots_[snapshot] == k) {
       const GridFrame g = on_grid(fields, grid_w_, grid_h_);
       append(r.film_mm, g.film_mm);

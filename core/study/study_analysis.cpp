@@ -20,8 +20,9 @@ constexpr double kInfinity = std::numeric_limits<double>::infinity();
 // (float32 sums round at 6e-8 of their size).
 constexpr double kMovedBySeeds = 1e-6;
 
-// A metric's components in one run; empty where the run has none of it.
-std::vector<double> components(const JobRecord& r, Metric m, double cell_height_mm) {
+// A metric's components in one run; empty where the run has none of it. The grid's cells are
+// cell_height_mm high, the frames frame_s apart.
+std::vector<double> components(const JobRecord& r, Metric m, double cell_height_mm, double frame_s) {
   const auto curve = [](const std::vector<double>& v) {
     return v.empty() || std::isnan(v.front()) ? std::vector<double>{} : v;
   };
@@ -31,6 +32,9 @@ std::vector<double> components(const JobRecord& r, Metric m, double cell_height_
     case Metric::front: return curve(r.front_mm);
     case Metric::covered_area: return curve(r.covered_area_mm2);
     case Metric::volume: return curve(r.volume_mm3);
+    case Metric::rest:
+      if (curve(r.fastest_mm_s).empty()) return {};
+      return {rest_time_s(r.fastest_mm_s, frame_s)};
     case Metric::pile_height: {
       std::vector<double> profile;
       const std::size_t cells = std::size_t(r.grid_width) * std::size_t(r.grid_height);
@@ -117,8 +121,9 @@ class Runs {
   SeedValues values(std::size_t setting, Metric m) const {
     SeedValues v;
     const double cell_height = study_.scene().domain.height_mm / study_.grid_height();
+    const double frame_s = 1.0 / study_.scene().frame_rate_hz;
     for (int s = 0; s < study_.seeds(); ++s) {
-      v.push_back(components(run(setting, s), m, cell_height));
+      v.push_back(components(run(setting, s), m, cell_height, frame_s));
       if (v.back().empty()) return {};
     }
     return v;
@@ -351,6 +356,7 @@ const std::vector<MetricInfo>& metrics() {
       {Metric::covered_area, "covered_area_mm2", "mm²", "the area under film thicker than 0.01 mm, every frame"},
       {Metric::volume, "volume_mm3", "mm³", "the film's volume in view, every frame"},
       {Metric::pile_height, "pile_height_mm", "mm", "the pile's height in each column of the grid at the snapshot frames"},
+      {Metric::rest, "rest_s", "s", "when the blood came to rest for good: the end of the last frame in which a particle moved faster than 0.1 mm/s"},
   };
   return table;
 }

@@ -15,7 +15,7 @@ namespace bleedsim {
 
 // The distribution metrics, each a list of components per run: a curve over the frames, a field
 // over the grid's cells at the snapshot frames, or a profile over its columns at them.
-enum class Metric { film, stain, front, covered_area, volume, pile_height };
+enum class Metric { film, stain, front, covered_area, volume, pile_height, rest };
 struct MetricInfo {
   Metric metric;
   const char* name;  // as the files call it

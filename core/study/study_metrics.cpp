@@ -127,9 +127,23 @@ GridFrame on_grid(const FrameFields& f, int grid_w, int grid_h) {
   return g;
 }
 
+double fastest_speed_mm_s(const std::vector<float>& velocity, const std::vector<std::uint32_t>& age,
+                          std::uint32_t lifetime_steps) {
+  double fastest = 0;
+  for (std::size_t s = 0; s < age.size() && 2 * s + 1 < velocity.size(); ++s)
+    if (age[s] < lifetime_steps) fastest = std::max(fastest, std::hypot(double(velocity[2 * s]), double(velocity[2 * s + 1])));
+  return fastest;
+}
+
+double rest_time_s(const std::vector<double>& fastest_mm_s, double frame_s) {
+  for (std::size_t k = fastest_mm_s.size(); k-- > 0;)
+    if (fastest_mm_s[k] > kRestSpeedMmS) return double(k + 1) * frame_s;
+  return 0;
+}
+
 FrameMeasures measure_frame(const FrameFields& f, const std::vector<float>& film_grid, int grid_w, int grid_h,
                             double gravity_x, double gravity_y) {
-  if (f.film_mm.empty()) return {kNotApplicable, kNotApplicable, kNotApplicable, kNotApplicable};
+  if (f.film_mm.empty()) return {kNotApplicable, kNotApplicable, kNotApplicable, kNotApplicable, kNotApplicable};
   FrameMeasures m{};
   const double pixel_area_mm2 = (f.width_mm / f.width) * (f.height_mm / f.height);
   m.covered_area_mm2 = 0;
@@ -142,6 +156,7 @@ FrameMeasures measure_frame(const FrameFields& f, const std::vector<float>& film
   double pile = 0;
   for (const double height : pile_heights_mm(film_grid, grid_w, grid_h, f.height_mm / grid_h)) pile += height;
   m.pile_height_mm = pile / grid_w;
+  m.fastest_mm_s = fastest_speed_mm_s(f.velocity, f.age, f.lifetime_steps);
   return m;
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 // What the accuracy study measures of one run (docs/accuracy.md, "The metrics"): every frame, the
-// blood front, the covered area, the volume in view and the pile's height; at the snapshot frames,
+// blood front, the covered area, the volume in view, the pile's height and the fastest particle (of
+// which the time the blood comes to rest); at the snapshot frames,
 // the film, the stain and the colour on a common grid of cells over the panel (each cell the area
 // mean of the pixels under it), so that settings of different resolutions are compared on the
 // same cells.
@@ -13,6 +14,10 @@ namespace bleedsim {
 // of the green).
 constexpr double kCoveredFilmMm = 0.01;
 
+// Blood moving slower than this is at rest (issue 36's bound: ParticleRest's tests hold the default
+// scene to it from 2 s after the last emission).
+constexpr double kRestSpeedMmS = 0.1;
+
 // One frame of one run, as the metrics need it: on the run's own pixel grid over the panel.
 struct FrameFields {
   int width = 0, height = 0;            // pixels
@@ -20,6 +25,9 @@ struct FrameFields {
   std::vector<float> film_mm;           // the film the frame shows (blurred when blurred); empty without particles
   std::vector<float> stain;             // the spread's stain; empty without the spread
   std::vector<std::uint8_t> rgba;       // the frame
+  std::vector<float> velocity;          // mm/s, two per slot of the particles' ring; empty without particles
+  std::vector<std::uint32_t> age;       // steps, one per slot; a slot is live while its age is below ...
+  std::uint32_t lifetime_steps = 0;     // ... the lifetime
 };
 
 // The common grid for panels of these sizes: the coarsest, and no finer than kMaxGridWidth cells
@@ -50,12 +58,22 @@ std::vector<double> pile_heights_mm(const std::vector<float>& film_mm, int w, in
 double blood_front_mm(const std::vector<float>& film_mm, int w, int h, double width_mm, double height_mm,
                       double gravity_x, double gravity_y);
 
+// The fastest live particle's speed, mm/s (0 with none alive).
+double fastest_speed_mm_s(const std::vector<float>& velocity, const std::vector<std::uint32_t>& age,
+                          std::uint32_t lifetime_steps);
+
+// When the blood came to rest for good: the end of the last frame in which a live particle moved
+// faster than kRestSpeedMmS (frame k ends at (k + 1)·frame_s), 0 if none ever did. A run still
+// moving at its last frame rests no earlier than its end, which is what this gives.
+double rest_time_s(const std::vector<double>& fastest_mm_s, double frame_s);
+
 // Every frame's measures of a run with a film (the particles'); NaN without one.
 struct FrameMeasures {
   double front_mm;          // blood_front_mm on the grid
   double covered_area_mm2;  // the panel's area under film thicker than kCoveredFilmMm, at its own pixels
   double volume_mm3;        // the film's volume in view: thickness summed over the panel's pixels
   double pile_height_mm;    // the mean over the grid's columns of pile_heights_mm
+  double fastest_mm_s;      // fastest_speed_mm_s of the particles
 };
 FrameMeasures measure_frame(const FrameFields& frame, const std::vector<float>& film_grid, int grid_w, int grid_h,
                             double gravity_x, double gravity_y);

@@ -24,6 +24,7 @@ JobRecord sample() {
   r.covered_area_mm2 = {2.0, -0.0, std::numeric_limits<double>::infinity()};
   r.volume_mm3 = {1e-300, 4.9e-324};  // the smallest normal's neighbourhood and a subnormal
   r.pile_height_mm = {};
+  r.fastest_mm_s = {0.0, 0.1, 99.5};
   r.grid_width = 2;
   r.grid_height = 1;
   r.snapshot_frames = {0, -1, 2147483647};
@@ -55,6 +56,7 @@ TEST(JobRecord, RoundTripsToTheBit) {
   EXPECT_TRUE(same_bits(back.covered_area_mm2, r.covered_area_mm2));
   EXPECT_TRUE(same_bits(back.volume_mm3, r.volume_mm3));
   EXPECT_TRUE(back.pile_height_mm.empty());
+  EXPECT_TRUE(same_bits(back.fastest_mm_s, r.fastest_mm_s));
   EXPECT_EQ(back.grid_width, 2);
   EXPECT_EQ(back.grid_height, 1);
   EXPECT_EQ(back.snapshot_frames, r.snapshot_frames);
@@ -68,10 +70,10 @@ TEST(JobRecord, RoundTripsToTheBit) {
 }
 
 TEST(JobRecord, IsLittleEndianWhateverTheHost) {
-  // The magic, then the version 1 as four little-endian bytes, then the data section's length.
+  // The magic, then the version 2 as four little-endian bytes, then the data section's length.
   const std::vector<std::uint8_t> bytes = serialize(sample());
   EXPECT_EQ(std::string(bytes.begin(), bytes.begin() + 8), "BSJOBREC");
-  EXPECT_EQ((std::vector<std::uint8_t>(bytes.begin() + 8, bytes.begin() + 12)), (std::vector<std::uint8_t>{1, 0, 0, 0}));
+  EXPECT_EQ((std::vector<std::uint8_t>(bytes.begin() + 8, bytes.begin() + 12)), (std::vector<std::uint8_t>{2, 0, 0, 0}));
   // The study key is the data section's first field: 0x0123456789abcdef, lowest byte first.
   EXPECT_EQ(bytes[20], 0xef);
   EXPECT_EQ(bytes[27], 0x01);
@@ -101,8 +103,8 @@ TEST(JobRecord, RefusesWhatIsNotARecordOfThisVersion) {
   const std::vector<std::uint8_t> bytes = serialize(sample());
   EXPECT_NE(refusal({'h', 'e', 'l', 'l', 'o'}).find("not a bleedsim study job record"), std::string::npos);
   std::vector<std::uint8_t> version = bytes;
-  version[8] = 2;
-  EXPECT_NE(refusal(version).find("version 2; this bleedsim reads version 1"), std::string::npos);
+  version[8] = 1;  // the records before the fastest particle was kept
+  EXPECT_NE(refusal(version).find("version 1; this bleedsim reads version 2"), std::string::npos);
   // Cut anywhere, it is refused (never read past its end), saying it is truncated.
   for (std::size_t cut = 8; cut < bytes.size(); cut += 7) {
     const std::string why = refusal(std::vector<std::uint8_t>(bytes.begin(), bytes.begin() + long(cut)));

@@ -86,6 +86,23 @@ TEST(BloodFront, IsTheFarthestCoveredCellAlongGravity) {
   EXPECT_DOUBLE_EQ(blood_front_mm(film, 4, 4, 4, 4, 0, 1000), 3.5);
 }
 
+TEST(RestTime, TheFastestIsOfTheLiveParticlesOnly) {
+  // Three slots: one live at (3, 4) mm/s (speed 5), one past its lifetime of 10 steps moving at
+  // 100, one live at rest.
+  const std::vector<float> velocity{3, 4, 100, 0, 0, 0};
+  EXPECT_DOUBLE_EQ(fastest_speed_mm_s(velocity, {2, 10, 9}, 10), 5.0);
+  EXPECT_DOUBLE_EQ(fastest_speed_mm_s(velocity, {10, 11, 9}, 10), 0.0);  // the live one at rest
+  EXPECT_DOUBLE_EQ(fastest_speed_mm_s({}, {}, 10), 0.0);                  // none
+}
+
+TEST(RestTime, IsTheEndOfTheLastFrameFasterThanTheRestSpeed) {
+  // Frames of 0.1 s: moving in frames 0–2 and 4 (frame 3 a pause), then at the rest speed exactly
+  // (not faster) and still: the blood rests from the end of frame 4, 0.5 s.
+  EXPECT_DOUBLE_EQ(rest_time_s({50, 2, 0.2, 0, 0.11, kRestSpeedMmS, 0}, 0.1), 0.5);
+  EXPECT_DOUBLE_EQ(rest_time_s({0, 0, 0}, 0.1), 0.0);      // never moved faster
+  EXPECT_DOUBLE_EQ(rest_time_s({0, 0, 1.0}, 0.1), 0.3);    // still moving at the end: the run's end
+}
+
 TEST(RunDistanceTest, KnownDifferencesGiveKnownDistances) {
   const GridFrame reference = on_grid(frame(0.04f, 100), 2, 1);
   const GridFrame run = on_grid(frame(0.05f, 106), 2, 1);  // compared on a coarser grid
