@@ -325,11 +325,11 @@ std::vector<std::uint8_t> Study::run_job(std::size_t j, BackendKind backend, int
   const char* film = blend_film_field(s);
   const char* stain = blend_stain_field(s);
   const bool particles = s.effects.has<ParticleParams>();
-  const std::uint32_t lifetime_steps = particles ? resolve_particles(s).model.lifetime.steps : 0;
+  const ParticleLifetime lifetime = particles ? resolve_particles(s).model.lifetime : ParticleLifetime{0, 0};
   std::size_t snapshot = 0;
   for (int k = 0; k < frames; ++k) {
     FrameFields fields{s.domain.width_px, s.domain.height_px, s.domain.width_mm, s.domain.height_mm, {}, {}, {}, {}, {},
-                       lifetime_steps};
+                       lifetime};
     // Compute per frame: the step and the copy to the host of what a renderer would read.
     const Clock::time_point start = Clock::now();
     sim->step();

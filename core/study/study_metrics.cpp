@@ -128,10 +128,10 @@ GridFrame on_grid(const FrameFields& f, int grid_w, int grid_h) {
 }
 
 double fastest_speed_mm_s(const std::vector<float>& velocity, const std::vector<std::uint32_t>& age,
-                          std::uint32_t lifetime_steps) {
+                          const ParticleLifetime& lifetime) {
   double fastest = 0;
   for (std::size_t s = 0; s < age.size() && 2 * s + 1 < velocity.size(); ++s)
-    if (age[s] < lifetime_steps) fastest = std::max(fastest, std::hypot(double(velocity[2 * s]), double(velocity[2 * s + 1])));
+    if (is_alive(lifetime, age[s])) fastest = std::max(fastest, std::hypot(double(velocity[2 * s]), double(velocity[2 * s + 1])));
   return fastest;
 }
 
@@ -156,7 +156,7 @@ FrameMeasures measure_frame(const FrameFields& f, const std::vector<float>& film
   double pile = 0;
   for (const double height : pile_heights_mm(film_grid, grid_w, grid_h, f.height_mm / grid_h)) pile += height;
   m.pile_height_mm = pile / grid_w;
-  m.fastest_mm_s = fastest_speed_mm_s(f.velocity, f.age, f.lifetime_steps);
+  m.fastest_mm_s = fastest_speed_mm_s(f.velocity, f.age, f.lifetime);
   return m;
 }
 

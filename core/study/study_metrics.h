@@ -8,6 +8,8 @@
 #include <cstdint>
 #include <vector>
 
+#include "core/physics/particles.h"
+
 namespace bleedsim {
 
 // Film thicker than this covers the tissue (it darkens a pixel visibly: 1 − exp(−40 · 0.01) ≈ 33 %
@@ -26,8 +28,8 @@ struct FrameFields {
   std::vector<float> stain;             // the spread's stain; empty without the spread
   std::vector<std::uint8_t> rgba;       // the frame
   std::vector<float> velocity;          // mm/s, two per slot of the particles' ring; empty without particles
-  std::vector<std::uint32_t> age;       // steps, one per slot; a slot is live while its age is below ...
-  std::uint32_t lifetime_steps = 0;     // ... the lifetime
+  std::vector<std::uint32_t> age;       // steps, one per slot
+  ParticleLifetime lifetime{0, 0};      // the model's: which ages are alive
 };
 
 // The common grid for panels of these sizes: the coarsest, and no finer than kMaxGridWidth cells
@@ -60,7 +62,7 @@ double blood_front_mm(const std::vector<float>& film_mm, int w, int h, double wi
 
 // The fastest live particle's speed, mm/s (0 with none alive).
 double fastest_speed_mm_s(const std::vector<float>& velocity, const std::vector<std::uint32_t>& age,
-                          std::uint32_t lifetime_steps);
+                          const ParticleLifetime& lifetime);
 
 // When the blood came to rest for good: the end of the last frame in which a live particle moved
 // faster than kRestSpeedMmS (frame k ends at (k + 1)·frame_s), 0 if none ever did. A run still

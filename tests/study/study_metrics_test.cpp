@@ -90,9 +90,10 @@ TEST(RestTime, TheFastestIsOfTheLiveParticlesOnly) {
   // Three slots: one live at (3, 4) mm/s (speed 5), one past its lifetime of 10 steps moving at
   // 100, one live at rest.
   const std::vector<float> velocity{3, 4, 100, 0, 0, 0};
-  EXPECT_DOUBLE_EQ(fastest_speed_mm_s(velocity, {2, 10, 9}, 10), 5.0);
-  EXPECT_DOUBLE_EQ(fastest_speed_mm_s(velocity, {10, 11, 9}, 10), 0.0);  // the live one at rest
-  EXPECT_DOUBLE_EQ(fastest_speed_mm_s({}, {}, 10), 0.0);                  // none
+  const ParticleLifetime ten{10, 0};
+  EXPECT_DOUBLE_EQ(fastest_speed_mm_s(velocity, {2, 10, 9}, ten), 5.0);
+  EXPECT_DOUBLE_EQ(fastest_speed_mm_s(velocity, {10, 11, 9}, ten), 0.0);  // the live one at rest
+  EXPECT_DOUBLE_EQ(fastest_speed_mm_s({}, {}, ten), 0.0);                  // none
 }
 
 TEST(RestTime, IsTheEndOfTheLastFrameFasterThanTheRestSpeed) {
