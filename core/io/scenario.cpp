@@ -12,6 +12,7 @@
 
 #include "core/effects/cuts.h"
 #include "core/effects/effect_list.h"
+#include "core/effects/particles/particle_params.h"
 #include "core/effects/pipeline.h"
 #include "core/effects/stage_kinds.h"
 #include "core/effects/surface/surface_stage.h"
@@ -376,9 +377,14 @@ void read_haptics(Reader& r, const toml::table& root, Scenario& s) {
 }
 
 // A tissue mesh places the tissue in the device frame itself, so the flat panel's placement under
-// the stylus is not the scene's to give; and the hooks in the particle step (the instrument's suction
-// and contact) do not yet act on a mesh.
+// the stylus is not the scene's to give; the hooks in the particle step (the instrument's suction
+// and contact) do not yet act on a mesh; and a film with depth is derived for the flat panel (its
+// walls the panel's edges, its pressure from gravity's normal part, which the mesh's maps do not keep).
 void refuse_what_a_mesh_replaces(const Scenario& s) {
+  const ParticleParams* particles = s.scene.effects.find<ParticleParams>();
+  if (particles && particles->film_depth)
+    throw InputError(s.place_of("particles.film_depth"), "particles.film_depth",
+                     "a film with depth runs on the flat panel only, not on a tissue.mesh; set it to false");
   for (const char* key : {"haptics.surface_z_mm", "haptics.panel_origin_mm", "haptics.scale"})
     if (s.places.count(key))
       throw InputError(s.place_of(key), key,

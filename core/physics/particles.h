@@ -49,7 +49,9 @@ struct ParticleModel {
   float range_mm;          // the farthest a neighbour acts from: contact plus cohesion
   float range_sq;
   float band_inverse;      // 1/(range − diameter): the cohesion's fall beyond contact, a factor (0: no band)
-  float stiffness;         // 1/s²: contact acceleration per mm of overlap
+  float stiffness;         // 1/s²: contact acceleration per mm of overlap (0: the film has depth)
+  float pressure;          // mm/s²: the film with depth's push, this·q·(1 − q)³ at q = r/R (0: a contact)
+  float kernel_inverse;    // 1/mm: 1/R, the film's kernel
   float damping;           // 1/s: contact acceleration per mm/s of approach speed
   float cohesion;          // mm/s²: a neighbour's pull within the range
   float pinning;           // mm/s²: the grip on a particle of the film's edge
@@ -360,6 +362,21 @@ BLEEDSIM_HD inline float cohesion_share(const ParticleModel& m, float r) {
   return q * q;
 }
 
+// The film with depth (docs/particles.md#a-film-with-depth): a particle is a parcel of volume V of a
+// shallow film whose depth is h(x) = Σ V·W(|x − x_j|), W the 2D Wendland C2 kernel of support R,
+// W(q) = 7/(π·R²)·(1 − q)⁴·(1 + 4q). Its hydrostatic energy ½·ρ·g_n·Σ V·h_i, differentiated, pushes
+// each parcel away from each neighbour by g_n·V·|∇W| = pressure·q·(1 − q)³: the pressure's
+// gradient, −g_n·∇h, summed over pairs, which conserves momentum as the contact does. It is
+// bounded (and 0 at q = 0), so parcels may overlap as deep as the film is.
+BLEEDSIM_HD inline bool has_depth(const ParticleModel& m) { return m.pressure > 0.0f; }
+
+BLEEDSIM_HD inline float film_push(const ParticleModel& m, float r) {
+  const float q = r * m.kernel_inverse;
+  if (q >= 1.0f) return 0.0f;
+  const float rest = 1.0f - q;
+  return m.pressure * q * (rest * rest * rest);
+}
+
 // What a particle's pairs add up to: its acceleration, the shift that undoes its overlaps with new
 // particles, and how its neighbours lie around it.
 struct PairSums {
@@ -409,7 +426,9 @@ BLEEDSIM_HD inline void add_pair(const ParticleModel& m, float dx, float dy, flo
     return;
   }
   float push = 0.0f;
-  if (r < m.diameter_mm) {
+  if (has_depth(m)) {
+    push = film_push(m, r);
+  } else if (r < m.diameter_mm) {
     const float approach = (vx - wx) * nx + (vy - wy) * ny;
     push = max_float(m.stiffness * (m.diameter_mm - r) - m.damping * approach, 0.0f);
   }
@@ -436,6 +455,37 @@ BLEEDSIM_HD inline void finish_pair_sums(const ParticleArrays& p, const Particle
   const bool on_edge = sums.sx * sums.sx + sums.sy * sums.sy > m.edge_openness * m.edge_openness ||
                        sums.company < m.edge_company;
   p.neighbourhood[slot] = (on_edge ? kOnEdge : 0u) | (sums.fastest_sq > m.wake_speed_sq ? kStirred : 0u);
+}
+
+// A film with depth meets the panel's edges as its own mirror image (docs/particles.md#walls-of-a-
+// film-with-depth): each wall within the kernel of the parcel at p reflects the parcel at q (itself
+// too), and the image pushes as a parcel would. The film's depth at a wall is then what the film
+// would have if it went on past it, so a pool against a wall is as deep there as hydrostatics says
+// (without images, it came out 27 % shallow), and the wall takes the push no parcel sends back.
+// Both on the panel, q's image is never nearer p than q is, so the neighbours within the range hold
+// every image that reaches p. An image at p itself (a parcel on the wall's line) has no direction
+// and, on the line, no push to give. Of two opposite walls both within reach (a panel narrower than
+// two ranges) only the low one mirrors.
+BLEEDSIM_HD inline void add_image(const ParticleModel& m, float dx, float dy, PairSums* sums) {
+  const float r2 = dx * dx + dy * dy;
+  if (r2 <= 0.0f || r2 >= m.range_sq) return;
+  const float r = sqrtf(r2), push = film_push(m, r) / r;
+  sums->ax += push * dx;
+  sums->ay += push * dy;
+}
+
+BLEEDSIM_HD inline void add_wall_images(const ParticleModel& m, float px, float py, float qx, float qy,
+                                        PairSums* sums) {
+  const float reach = m.range_mm;
+  // The image of q across a wall at w is 2w − q: p − (2w − q) = (p − w) + (q − w).
+  const bool near_low_x = px - m.min_x < reach, near_high_x = m.max_x - px < reach;
+  const bool near_low_y = py - m.min_y < reach, near_high_y = m.max_y - py < reach;
+  const float ix = near_low_x ? (px - m.min_x) + (qx - m.min_x) : (px - m.max_x) + (qx - m.max_x);
+  const float iy = near_low_y ? (py - m.min_y) + (qy - m.min_y) : (py - m.max_y) + (qy - m.max_y);
+  const bool by_x = near_low_x || near_high_x, by_y = near_low_y || near_high_y;
+  if (by_x) add_image(m, ix, py - qy, sums);
+  if (by_y) add_image(m, px - qx, iy, sums);
+  if (by_x && by_y) add_image(m, ix, iy, sums);
 }
 
 // The sorted positions [begin, end) of the particles in cells x0 … x1 of row y: the cells of a row
@@ -479,8 +529,10 @@ BLEEDSIM_HD inline void collide_particle(const ParticleArrays& p, const Particle
       const std::uint32_t other = r2 > 0.0f ? 0u : p.sorted_slot[j];
       const FloatPair w = pair_at(p.sorted_velocity, j);
       add_pair(m, dx, dy, vx, vy, age, slot, w.x, w.y, p.sorted_age[j], other, &sums);
+      if (has_depth(m)) add_wall_images(m, px, py, qx, qy, &sums);
     }
   }
+  if (has_depth(m)) add_wall_images(m, px, py, px, py, &sums);
   finish_pair_sums(p, m, slot, sums);
 }
 

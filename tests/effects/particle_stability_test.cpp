@@ -213,8 +213,14 @@ TEST(ParticleHardCases, CrowdedCells) {
 // has stopped sleeps (docs/particles.md#rest) at exactly no speed, so the bound asks that every
 // flow on the panel has stopped by then and that nothing stopped starts again: no late avalanche
 // of a pile that had crept, no drop that restarts. Each seed must hold it, not their pool.
-TEST(ParticleRest, TheDefaultPanelStaysStoppedFromTwoSecondsAfterTheLastEmission) {
-  const Scene base = load_scenario((fs::path(test::source_dir()) / "scenarios" / "default.toml").string()).scene;
+void expect_the_default_panel_stays_stopped(bool film_depth) {
+  Scene base = load_scenario((fs::path(test::source_dir()) / "scenarios" / "default.toml").string()).scene;
+  if (film_depth) {
+    ParticleParams p = base.effects.get<ParticleParams>();
+    p.film_depth = true;
+    p.cohesion_mm3_s2 = 0.0;
+    base.effects.set(p);
+  }
   double last_emission = 0.0;
   for (const Cut& cut : base.cuts) last_emission = std::max(last_emission, cut.start_s + cut.bleed_s);
   constexpr double kAfter = 2.0, kSlow = 0.1;
@@ -236,6 +242,15 @@ TEST(ParticleRest, TheDefaultPanelStaysStoppedFromTwoSecondsAfterTheLastEmission
               << (fastest > 0 ? " (at " + std::to_string(when) + " s)" : "") << std::endl;
     EXPECT_LE(fastest, kSlow) << "seed " << seed;
   }
+}
+
+TEST(ParticleRest, TheDefaultPanelStaysStoppedFromTwoSecondsAfterTheLastEmission) {
+  expect_the_default_panel_stays_stopped(false);
+}
+
+// The same with a film that has depth (docs/particles.md#a-film-with-depth): its pools stop too.
+TEST(ParticleRest, TheDefaultPanelWithAFilmOfDepthStaysStoppedFromTwoSecondsAfterTheLastEmission) {
+  expect_the_default_panel_stays_stopped(true);
 }
 
 }  // namespace

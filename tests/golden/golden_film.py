@@ -375,7 +375,8 @@ def check_particles(scenario, f, keys, problems, notes, quota=None, frame=None):
             film_pixels += int((film > 0.0).sum())
             check_film_on_surface(settings, scene, frame, k, p, slot_age[live], film, problems)
             continue
-        margin = min(r, min(panel) / 2)   # a wall's line: where a centre touches it
+        # A wall's line: where a centre touches it; a film with depth's parcels reach the edge itself.
+        margin = 0.0 if scenario["particles"]["film_depth"] else min(r, min(panel) / 2)
         low, high = np.full(2, margin / 2), np.array(panel) - margin / 2   # the backstop: half the margin past it
         outside = ~np.isfinite(p).all(axis=1) | ((p < low - bound_slack) | (p > high + bound_slack)).any(axis=1)
         if outside.any():

@@ -40,6 +40,8 @@ def read_scenario(parsed, params):
         p = scenario["particles"]
         if "fade_s" not in written["particles"]:
             p["fade_s"] = min(p["fade_s"], p["lifetime_s"])
+        if p["film_depth"] and "cohesion_mm3_s2" not in written["particles"]:
+            p["cohesion_mm3_s2"] = 0.0   # a film with depth has no cohesion
     if "blur" in scenario and "sigma_px" not in written["blur"]:
         scenario["blur"]["sigma_px"] = max(0.5, scenario["blur"]["radius_px"] / 2.0)
     if "haptics" in scenario and "panel_origin_mm" not in written["haptics"]:
@@ -70,13 +72,39 @@ def particle_substeps(scenario):
     gx, gy = abs(p["gravity_mm_s2"][0]), abs(p["gravity_mm_s2"][1])
     g, d, v = math.hypot(gx, gy), p["diameter_mm"], p["particle_volume_mm3"]
     along = (gx * s["width_mm"] + gy * s["height_mm"]) / g if g > 0 else s["height_mm"]
-    heap_mm2 = p["capacity"] * math.sqrt(3) / 2 * d * d
-    depth = p["design_depth_mm"] or min(along, 2 * math.sqrt(heap_mm2 / math.pi))
-    k = (g * depth + p["cohesion_mm3_s2"] * d / v * d) / (p["compression"] * d * d)
-    c = p["damping_ratio"] * math.sqrt(2 * k)
-    a, b = 8 * k, 16 * c - 2 * p["drag_per_s"]
-    limit = (-b + math.sqrt(b * b + 16 * a)) / (2 * a)
+    if p["film_depth"]:
+        limit = film_depth_step_limit(scenario, g, along)
+    else:
+        heap_mm2 = p["capacity"] * math.sqrt(3) / 2 * d * d
+        depth = p["design_depth_mm"] or min(along, 2 * math.sqrt(heap_mm2 / math.pi))
+        k = (g * depth + p["cohesion_mm3_s2"] * d / v * d) / (p["compression"] * d * d)
+        c = p["damping_ratio"] * math.sqrt(2 * k)
+        a, b = 8 * k, 16 * c - 2 * p["drag_per_s"]
+        limit = (-b + math.sqrt(b * b + 16 * a)) / (2 * a)
     n = max(1, math.floor(1 / (limit * s["frame_rate_hz"])))
     while 1 / (s["frame_rate_hz"] * n) >= limit:
         n += 1
     return n
+
+
+def film_depth_step_limit(scenario, g, along):
+    """A film with depth's sub-step limit (docs/particles.md#a-film-with-depth): the shorter of its fastest
+    wave's, k·dt² − 2γ·dt < 4 with k = κ·g_n·H/R² (κ = 10.18 for the Wendland C2 kernel, R = 2.6·d,
+    g_n the normal gravity or what Earth's 9810 mm/s² leaves after g), H the deepest film: the ring's
+    whole volume pooled against the lowest wall, its surface sloping at g/g_n; and the travel, half a
+    diameter at the speed limit."""
+    s, p = scenario["scene"], scenario["particles"]
+    d = p["diameter_mm"]
+    normal = p["gravity_normal_mm_s2"] or math.sqrt(max(9810.0 ** 2 - g * g, 0.0))
+    across, slope = s["width_mm"] * s["height_mm"] / along, g / normal
+    volume = p["capacity"] * p["particle_volume_mm3"]
+    if p["design_depth_mm"]:
+        depth = p["design_depth_mm"]
+    elif volume <= across * slope * along * along / 2:
+        depth = math.sqrt(2 * volume * slope / across)
+    else:
+        depth = volume / (across * along) + slope * along / 2
+    support = 2.6 * d
+    k, drag = 10.18 * normal * depth / (support * support), p["drag_per_s"]
+    waves = (2 * drag + math.sqrt(4 * drag * drag + 16 * k)) / (2 * k)
+    return min(waves, d / (2 * p["max_speed_mm_s"]))

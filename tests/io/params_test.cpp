@@ -146,7 +146,8 @@ TEST(ParamTables, TheDocumentedDefaultsAreTheStructsOwn) {
   // What `bleedsim params` shows as a default is what a default-constructed struct holds; a default
   // that follows from other keys is said in words.
   EXPECT_EQ(scenario_param("particles.capacity").default_text(), std::to_string(ParticleParams{}.capacity));
-  EXPECT_EQ(scenario_param("particles.substeps").default_text(), "0: the fewest inside the limit");
+  EXPECT_EQ(scenario_param("particles.substeps").default_text(),
+            "0: the fewest inside the limit (with film_depth, and under half a diameter a step at max_speed_mm_s)");
   EXPECT_EQ(std::get<double>(scenario_param("haptics.max_force_N").default_value), HapticParams{}.max_force_N);
   EXPECT_EQ(scenario_param("particles.gravity_mm_s2").default_text(), "[0, 1000]");
   EXPECT_EQ(scenario_param("blur.sigma_px").default_text(), "max(0.5, radius_px / 2)");

@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <string>
 #include <type_traits>
 #include <variant>
@@ -15,11 +16,13 @@
 #include "core/io/scenario.h"
 #include "core/runtime/input_error.h"
 #include "tests/io/scenario_text.h"
+#include "tests/test_paths.h"
 
 namespace bleedsim {
 namespace {
 
 using namespace test;
+namespace fs = std::filesystem;
 
 // Every [particles] key set, one per line, and two cuts: one taking its wound's flow from
 // [particles], one giving its own. Its contact (docs/particles.md): d = 0.25 mm, V = 0.008 mm³,
@@ -300,6 +303,70 @@ TEST(ScenarioParticles, SubStepsPastTheStabilityLimitAreRefusedWithTheFewestInsi
   const Scene scene = parse_scenario(kParticleBase, kPath).scene;
   EXPECT_EQ(resolve_particles(scene.effects.get<ParticleParams>(), scene).mechanics.substeps, limit.fewest);
   EXPECT_NEAR(resolve_particles(scene.effects.get<ParticleParams>(), scene).mechanics.step_limit_s, limit.dt_s, 1e-12);
+}
+
+// A film with depth (docs/particles.md#a-film-with-depth): gravity into the mucosa defaults to what
+// Earth's leaves after the panel's, √(9810² − 1000²) = 9758.9 mm/s², and cohesion to none.
+TEST(ScenarioParticles, AFilmWithDepthTakesItsNormalGravityFromEarthsAndNoCohesion) {
+  const Scene scene = parse_scenario(particles_with("film_depth = true\n"), kPath).scene;
+  const ParticleParams& p = scene.effects.get<ParticleParams>();
+  EXPECT_TRUE(p.film_depth);
+  EXPECT_EQ(p.cohesion_mm3_s2, 0.0);
+  EXPECT_NEAR(normal_gravity_mm_s2(p), std::sqrt(9810.0 * 9810.0 - 1000.0 * 1000.0), 1e-9);
+  const ParticleSettings s = resolve_particles(scene);
+  EXPECT_TRUE(has_depth(s.model));
+  EXPECT_EQ(s.model.stiffness, 0.0f);
+  EXPECT_EQ(s.model.cohesion, 0.0f);
+  // A parcel reaches the panel's edge: its walls are the edges themselves.
+  EXPECT_EQ(s.model.min_x, 0.0f);
+  EXPECT_EQ(s.model.max_y, 12.0f);
+}
+
+TEST(ScenarioParticles, AFilmWithDepthNeedsGravityIntoTheMucosa) {
+  // Not written, it is blamed at its table's line.
+  EXPECT_TRUE(refused_at(particles_with("film_depth = true\ngravity_mm_s2 = [0, 9810]\n"), kParticlesEnd - 1,
+                         "particles.gravity_normal_mm_s2",
+                         "a film with depth needs gravity into the mucosa, and with gravity_mm_s2 = [0, 9810] "
+                         "Earth's leaves none"));
+  // Given, it is what it says.
+  const Scene given =
+      parse_scenario(particles_with("film_depth = true\ngravity_mm_s2 = [0, 9810]\ngravity_normal_mm_s2 = 500\n"),
+                     kPath)
+          .scene;
+  EXPECT_EQ(normal_gravity_mm_s2(given.effects.get<ParticleParams>()), 500.0);
+}
+
+// A film with depth's step follows its fastest wave and the speed limit; a sub-step past the waves'
+// limit is refused with what sets it. On the 16 × 12 mm panel the ring's 65.5 mm³ pools 0.916 mm deep
+// against the floor (a wedge √(2·65.5·0.1025/16) deep, 8.9 mm long: the 12 mm panel holds it), and
+// ω = √(10.18·9759·0.916)/0.52 = 580/s: stable up to 3.76 ms with the drag, so 5 sub-steps of
+// 6.67 ms are past it.
+TEST(ScenarioParticles, AFilmWithDepthsStepIsRefusedPastItsWavesLimit) {
+  EXPECT_TRUE(refused_at(particles_with("film_depth = true\nsubsteps = 5\n"), kParticlesEnd + 1, "particles.substeps",
+                         "a sub-step of 6.667 ms is past the film's waves' stability limit of "));
+  const Scene scene = parse_scenario(particles_with("film_depth = true\n"), kPath).scene;
+  const ParticleMechanics m = resolve_particles(scene).mechanics;
+  EXPECT_NEAR(m.depth_mm, std::sqrt(2.0 * 16384 * 0.004 * (1000.0 / 9758.9) / 16.0), 1e-3);
+  EXPECT_NEAR(std::sqrt(m.wave_per_s2), std::sqrt(10.18 * 9758.9 * m.depth_mm) / 0.52, 1e-6 * std::sqrt(m.wave_per_s2));
+  // The fewest: the speed limit's, 100 mm/s × dt under 0.1 mm, dt < 1 ms: 34 at 30 Hz.
+  EXPECT_EQ(m.substeps, 34);
+}
+
+TEST(ScenarioParticles, AFilmWithDepthHasNoCohesion) {
+  EXPECT_TRUE(refused_at(particles_with("film_depth = true\ncohesion_mm3_s2 = 5\n"), kParticlesEnd + 1,
+                         "particles.cohesion_mm3_s2", "a film with depth has no cohesion between its parcels (got 5)"));
+}
+
+TEST(ScenarioParticles, AFilmWithDepthRunsOnTheFlatPanelOnly) {
+  const std::string turbinate = (fs::path(source_dir()) / "scenarios" / "turbinate.toml").string();
+  try {
+    load_scenario(turbinate, ReadTissue::draw, {"particles.film_depth = true"});
+    ADD_FAILURE() << "a film with depth on the turbinate's mesh was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("particles.film_depth: a film with depth runs on the flat panel only, not on a tissue.mesh"),
+              std::string::npos)
+        << e.what();
+  }
 }
 
 TEST(ScenarioParticles, TheSpeedLimitMustKeepAStepUnderHalfADiameter) {

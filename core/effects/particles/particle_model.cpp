@@ -31,6 +31,19 @@ double deepest_pile_mm(const ParticleParams& p, const Domain& d) {
   return std::min(along, 2.0 * std::sqrt(area_mm2 / M_PI));
 }
 
+// The deepest film there can be: the ring's whole volume pooled against the lowest wall, its
+// surface sloping at g_t/g_n where gravity balances the pressure's gradient (g_n·∇h = g_t), over
+// the panel's width across gravity: a wedge √(2·V·s / width) deep at the wall, or, past the wedge
+// the panel's extent holds, that wedge with the rest spread evenly over it.
+double deepest_film_mm(const ParticleParams& p, const Domain& d, double normal_mm_s2) {
+  const double gx = std::abs(p.gravity_x_mm_s2), gy = std::abs(p.gravity_y_mm_s2), g = std::hypot(gx, gy);
+  const double along = g > 0 ? (gx * d.width_mm + gy * d.height_mm) / g : d.height_mm;
+  const double across = d.width_mm * d.height_mm / along, slope = g / normal_mm_s2;
+  const double volume = double(p.capacity) * p.particle_volume_mm3;
+  if (volume <= across * slope * along * along / 2.0) return std::sqrt(2.0 * volume * slope / across);
+  return volume / (across * along) + slope * along / 2.0;
+}
+
 // The fewest sub-steps inside the limit, or kMaxSubsteps + 1 when more than kMaxSubsteps would be
 // needed: a tiny particle's limit (or a vanishing one) asks for more steps than an int holds, so
 // the count is checked before it is narrowed.
@@ -57,22 +70,49 @@ ParticleMechanics particle_mechanics(const ParticleParams& p, const Scene& scene
   ParticleMechanics m{};
   const double d = p.diameter_mm, v = p.particle_volume_mm3;
   m.range_mm = d * (1.0 + p.cohesion_range);
-  m.cell_mm = p.cell_mm > 0.0 ? p.cell_mm : m.range_mm;
   m.film_mm = v / (std::sqrt(3.0) / 2.0 * d * d);
-  m.depth_mm = p.design_depth_mm > 0.0 ? p.design_depth_mm : deepest_pile_mm(p, domain);
   m.cohesion_mm_s2 = p.cohesion_mm3_s2 * d / v;
   m.pinning_mm_s2 = p.pinning_mm3_s2 * d / v;
   m.yield_mm_s2 = p.yield_mm2_s2 / m.film_mm;
-  const double g = std::hypot(p.gravity_x_mm_s2, p.gravity_y_mm_s2);
-  m.stiffness_per_s2 = (g * m.depth_mm + m.cohesion_mm_s2 * d) / (p.compression * d * d);
-  m.damping_per_s = p.damping_ratio * std::sqrt(2.0 * m.stiffness_per_s2);
-  m.step_limit_s = stable_time_step_s(m.stiffness_per_s2, m.damping_per_s, p.drag_per_s, kDesignContacts);
-  m.substeps = p.substeps > 0 ? p.substeps : fewest_stable_substeps(frame_rate_hz, m.step_limit_s);
+  if (p.film_depth) {
+    // No contact: the film's pressure pushes its parcels apart, and its fastest wave sets the step
+    // (undamped but for the drag, which the step takes implicitly).
+    const double normal = normal_gravity_mm_s2(p), kernel = kKernelSupport * d;
+    m.kernel_mm = kernel;
+    m.range_mm = std::max(m.range_mm, kernel);
+    m.depth_mm = p.design_depth_mm > 0.0 ? p.design_depth_mm : deepest_film_mm(p, domain, normal);
+    m.pressure_mm_s2 = normal * v * 140.0 / (M_PI * kernel * kernel * kernel);
+    m.wave_per_s2 = kKernelWaveNumber * normal * m.depth_mm / (kernel * kernel);
+    m.step_limit_s = stable_time_step_s(m.wave_per_s2, 0.0, p.drag_per_s, 1);
+  } else {
+    m.depth_mm = p.design_depth_mm > 0.0 ? p.design_depth_mm : deepest_pile_mm(p, domain);
+    const double g = std::hypot(p.gravity_x_mm_s2, p.gravity_y_mm_s2);
+    m.stiffness_per_s2 = (g * m.depth_mm + m.cohesion_mm_s2 * d) / (p.compression * d * d);
+    m.damping_per_s = p.damping_ratio * std::sqrt(2.0 * m.stiffness_per_s2);
+    m.step_limit_s = stable_time_step_s(m.stiffness_per_s2, m.damping_per_s, p.drag_per_s, kDesignContacts);
+  }
+  m.cell_mm = p.cell_mm > 0.0 ? p.cell_mm : m.range_mm;
+  // A film with depth's fewest sub-steps also keep a particle at the speed limit under half a
+  // diameter a step (step_within_a_radius), usually the shorter limit there; the contact's
+  // stiffness is the shorter for the scenes it is made for, and a speed limit past it is refused.
+  const double travel_limit_s = p.film_depth ? d / (2.0 * p.max_speed_mm_s) : m.step_limit_s;
+  m.substeps = p.substeps > 0 ? p.substeps
+                              : fewest_stable_substeps(frame_rate_hz, std::min(m.step_limit_s, travel_limit_s));
   m.dt_s = 1.0 / (frame_rate_hz * m.substeps);
   return m;
 }
 
 std::string number(double v) { return format_significant(v, 4); }
+
+// What makes the step's stability limit what it is, for the messages: the contact's stiffness, or
+// the film's fastest wave.
+std::string what_limits_the_step(const ParticleParams& p, const ParticleMechanics& m) {
+  if (p.film_depth)
+    return "ω = " + number(std::sqrt(m.wave_per_s2)) + "/s on a " + number(m.depth_mm) + " mm film under " +
+           number(normal_gravity_mm_s2(p)) + " mm/s² into the mucosa";
+  return number(m.stiffness_per_s2) + "/s² for a " + number(m.depth_mm) + " mm pile at " + number(p.compression) +
+         " compression";
+}
 
 // Cells of the collision grid over a width × height mm panel: the check refuses the grids too large
 // to key before anything narrows the count.
@@ -95,11 +135,21 @@ DropLimit critical_drop(const ParticleParams& p, const ParticleMechanics& m) {
 
 }  // namespace
 
+double normal_gravity_mm_s2(const ParticleParams& p) {
+  if (p.gravity_normal_mm_s2 > 0.0) return p.gravity_normal_mm_s2;
+  const double g = std::hypot(p.gravity_x_mm_s2, p.gravity_y_mm_s2);
+  return g < kEarthGravityMmS2 ? std::sqrt(kEarthGravityMmS2 * kEarthGravityMmS2 - g * g) : 0.0;
+}
+
 ParamProblem cell_holds_the_range(const ParticleParams& p, const Scene& scene) {
   const double range = particle_mechanics(p, scene).range_mm;
   if (p.cell_mm == 0 || p.cell_mm >= range) return {};
-  return {"cell_mm", "must be 0 (the range) or at least the range, diameter_mm × (1 + cohesion_range) = " +
-                         format_number(range) + " mm (got " + format_number(p.cell_mm) + ")"};
+  const std::string range_is =
+      p.film_depth ? "the larger of diameter_mm × (1 + cohesion_range) and the film's kernel, " +
+                         format_number(kKernelSupport) + " × diameter_mm,"
+                   : "diameter_mm × (1 + cohesion_range)";
+  return {"cell_mm", "must be 0 (the range) or at least the range, " + range_is + " = " + format_number(range) +
+                         " mm (got " + format_number(p.cell_mm) + ")"};
 }
 
 ParamProblem substep_inside_stability_limit(const ParticleParams& p, const Scene& scene) {
@@ -109,18 +159,27 @@ ParamProblem substep_inside_stability_limit(const ParticleParams& p, const Scene
   fewest.substeps = 0;
   const int needed = particle_mechanics(fewest, scene).substeps;
   // No sub-step count the scene could give would do: the particles make the contact too stiff.
+  const std::string remedy = p.film_depth ? "a smaller design_depth_mm" : "more compression";
+  const std::string what = p.film_depth ? "the film's waves" : "the contact";
   if (needed > kMaxSubsteps)
-    return {"diameter_mm", "particles of " + number(p.diameter_mm) + " mm make the contact so stiff (" +
-                               number(m.stiffness_per_s2) + "/s² for a " + number(m.depth_mm) + " mm pile at " +
-                               number(p.compression) + " compression) that its stability limit of " +
-                               number(m.step_limit_s * 1e3) + " ms needs more than " + std::to_string(kMaxSubsteps) +
-                               " sub-steps per frame; use larger particles, or more compression"};
-  return {"substeps", "a sub-step of " + number(m.dt_s * 1e3) + " ms is past the contact's stability limit of " +
-                          number(m.step_limit_s * 1e3) + " ms (stiffness " + number(m.stiffness_per_s2) + "/s² for a " +
-                          number(m.depth_mm) + " mm pile at " + number(p.compression) + " compression, damping " +
+    return {"diameter_mm", "particles of " + number(p.diameter_mm) + " mm make " + what +
+                               (p.film_depth ? " so fast (" : " so stiff (") + what_limits_the_step(p, m) +
+                               ") that the stability limit of " + number(m.step_limit_s * 1e3) +
+                               " ms needs more than " + std::to_string(kMaxSubsteps) +
+                               " sub-steps per frame; use larger particles, or " + remedy};
+  const std::string details = p.film_depth ? what_limits_the_step(p, m)
+                                           : "stiffness " + what_limits_the_step(p, m) + ", damping " +
+                                                 number(m.damping_per_s) + "/s";
+  return {"substeps", "a sub-step of " + number(m.dt_s * 1e3) + " ms is past " +
+                          (p.film_depth ? "the film's waves' " : "the contact's ") + "stability limit of " +
+                          number(m.step_limit_s * 1e3) + " ms (" + details + ", drag " + number(p.drag_per_s) +
+                          "/s); use at least " + std::to_string(needed) +
+                          " sub-steps per frame (0 takes the fewest), larger particles, or " + remedy};
+  return {"substeps", "a sub-step of " + number(m.dt_s * 1e3) + " ms is past the stability limit of " +
+                          number(m.step_limit_s * 1e3) + " ms (" + what_limits_the_step(p, m) + ", damping " +
                           number(m.damping_per_s) + "/s, drag " + number(p.drag_per_s) + "/s); use at least " +
-                          std::to_string(needed) +
-                          " sub-steps per frame (0 takes the fewest), larger particles, or more compression"};
+                          std::to_string(needed) + " sub-steps per frame (0 takes the fewest), larger particles, or " +
+                          remedy};
 }
 
 // A particle at the speed limit moves less than a radius a step, so none passes through another
@@ -153,7 +212,7 @@ ParamProblem grid_keyable(const ParticleParams& p, const Scene& scene) {
       "the collision grid would have " + number(cells) + " cells of " + number(m.cell_mm) + " mm; at most 4e9";
   if (p.cell_mm > 0) return {"cell_mm", grid};
   return {"diameter_mm", grid +
-                             " (cells of the range, diameter_mm × (1 + cohesion_range)): use larger particles, "
+                             " (cells of the range, which the diameter sets): use larger particles, "
                              "or a larger cell_mm"};
 }
 
@@ -178,7 +237,9 @@ ParticleSettings resolve_particles(const ParticleParams& p, const Scene& scene) 
   settings.drop = critical_drop(p, mech);
 
   const double r = p.diameter_mm / 2.0;
-  const double margin = std::min(r / stretch, std::min(scene.domain.width_mm, scene.domain.height_mm) / 2.0);
+  // A disc touches a wall a radius from it; a parcel of a film with depth reaches the wall itself.
+  const double margin =
+      p.film_depth ? 0.0 : std::min(r / stretch, std::min(scene.domain.width_mm, scene.domain.height_mm) / 2.0);
   ParticleModel& m = settings.model;
   m.radius_mm = float(r);
   m.diameter_mm = float(p.diameter_mm);
@@ -188,6 +249,8 @@ ParticleSettings resolve_particles(const ParticleParams& p, const Scene& scene) 
   m.band_inverse = mech.range_mm > p.diameter_mm ? float(1.0 / (mech.range_mm - p.diameter_mm)) : 0.0f;
   m.stiffness = float(mech.stiffness_per_s2);
   m.damping = float(mech.damping_per_s);
+  m.pressure = float(mech.pressure_mm_s2);
+  m.kernel_inverse = mech.kernel_mm > 0.0 ? float(1.0 / mech.kernel_mm) : 0.0f;
   m.cohesion = float(mech.cohesion_mm_s2);
   m.pinning = float(mech.pinning_mm_s2);
   m.yield = float(mech.yield_mm_s2);
@@ -216,7 +279,8 @@ ParticleSettings resolve_particles(const ParticleParams& p, const Scene& scene) 
   // of it: √3 the pair's stiffness makes the floor give as a bottom contact does, at most ⅔ of the
   // design compression on average under a pile of the design depth. A corner particle's two walls
   // and three contacts, 2√3 + 3 < kDesignContacts pairs' stiffness, keep it inside the stability
-  // limit. Critically damped, 2√k_w, taken implicitly (so any damping is stable).
+  // limit. Critically damped, 2√k_w, taken implicitly (so any damping is stable). A film with depth
+  // has no contact: its walls mirror it (wall_images), and the spring is 0.
   const double wall_stiffness = std::sqrt(3.0) * mech.stiffness_per_s2;
   m.wall_stiffness = float(wall_stiffness);
   m.wall_damping_divisor = float(1.0 + 2.0 * std::sqrt(wall_stiffness) * dt);

@@ -32,16 +32,37 @@ constexpr float kEdgeOpenness = 1.0f;
 // ... and so is one with fewer neighbours than this (weighted as the cohesion): a drop of a few.
 constexpr float kEdgeCompany = 2.5f;
 
+// Earth's gravity, mm/s²: what gravity_normal_mm_s2 = 0 takes the normal part from.
+constexpr double kEarthGravityMmS2 = 9810.0;
+// A film with depth (docs/particles.md#a-film-with-depth) sums its depth with a 2D Wendland C2
+// kernel reaching this many diameters: 2·1.3 particle spacings of a one-layer film, the support
+// that kernel is commonly used at (Dehnen & Aly 2012) ...
+constexpr double kKernelSupport = 2.6;
+// ... whose pressure's fastest wave has ω² = g_n·h·max_k k²·Ŵ(k) = g_n·h·κ/R², κ = 10.18 (Ŵ the
+// kernel's Fourier transform, R its support; the maximum is at k·R = 5.16, computed once by
+// quadrature).
+constexpr double kKernelWaveNumber = 10.18;
+
+// Gravity into the mucosa: gravity_normal_mm_s2, or when that is 0 what Earth's leaves after the
+// panel's own, √(9810² − |g|²) (0 when |g| is Earth's or more).
+double normal_gravity_mm_s2(const ParticleParams& params);
+
 // What the parameters make of the contact, the film and the time step, in double.
 struct ParticleMechanics {
-  double range_mm;          // d·(1 + cohesion_range): the farthest a neighbour acts from
+  double range_mm;          // d·(1 + cohesion_range), or the kernel's support when the film has depth: the
+                            // farthest a neighbour acts from
+  double kernel_mm;         // R = kKernelSupport·d: the film's kernel (0: the film has no depth)
+  double pressure_mm_s2;    // g_n·V·140/(π·R³): a neighbour's push is this·q·(1 − q)³, q = r/R
   double cell_mm;           // the grid's cell edge: cell_mm, or the range
   double film_mm;           // t = V / (√3/2·d²): the film a hexagonal layer of particles makes
-  double depth_mm;          // H: the deepest pile the contact is made stiff enough for
+  double depth_mm;          // H: the deepest pile the contact is made stiff enough for (the film with depth:
+                            // the deepest film its step is made stable for)
   double cohesion_mm_s2;    // a neighbour's pull: q_c·d / V (a force per unit length of edge, per particle)
   double pinning_mm_s2;     // the edge's grip: q_p·d / V
   double yield_mm_s2;       // every particle's grip: (τ_y/ρ) / t
-  double stiffness_per_s2;  // k = (|g|·H + a_coh·d) / (ε·d²): the deepest pile's overlap is ε·d
+  double stiffness_per_s2;  // k = (|g|·H + a_coh·d) / (ε·d²): the deepest pile's overlap is ε·d (0: the
+                            // film has depth, and no contact)
+  double wave_per_s2;       // the film with depth: its fastest wave's ω² = κ·g_n·H / R² (0: none)
   double damping_per_s;     // c = ζ·√(2k): ζ of a pair's critical damping
   double step_limit_s;      // the largest stable sub-step, for kDesignContacts contacts
   int substeps;             // the scene's, or the fewest inside the limit (kMaxSubsteps + 1: more than allowed)

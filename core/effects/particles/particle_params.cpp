@@ -16,9 +16,11 @@ std::string number(double v) { return format_significant(v, 4); }
 
 // ---- what a file leaves out -------------------------------------------------------------------
 
-// A fade not given is the default's, or the whole lifetime when that is shorter.
+// A fade not given is the default's, or the whole lifetime when that is shorter. A film with depth
+// has no cohesion unless the file gives one (which a rule then refuses).
 ParamProblem resolve_file(P& p, const Written& written, const Scene&) {
   if (!written.has("fade_s")) p.fade_s = std::min(P{}.fade_s, p.lifetime_s);
+  if (p.film_depth && !written.has("cohesion_mm3_s2")) p.cohesion_mm3_s2 = 0.0;
   return {};
 }
 
@@ -30,9 +32,10 @@ ParamProblem fade_within_lifetime(const P& p, const Scene&) {
                         format_number(p.fade_s) + ")"};
 }
 
-// The contact's stiffness comes from the load it must bear: gravity over the pile, or cohesion.
+// The contact's stiffness comes from the load it must bear: gravity over the pile, or cohesion. (A
+// film with depth has its pressure instead: normal_gravity_present.)
 ParamProblem something_to_bear(const P& p, const Scene&) {
-  if (std::hypot(p.gravity_x_mm_s2, p.gravity_y_mm_s2) > 0 || p.cohesion_mm3_s2 > 0) return {};
+  if (p.film_depth || std::hypot(p.gravity_x_mm_s2, p.gravity_y_mm_s2) > 0 || p.cohesion_mm3_s2 > 0) return {};
   return {"gravity_mm_s2", "with no gravity and no cohesion the contact has no load to be made stiff for; "
                            "give either"};
 }
@@ -45,6 +48,25 @@ ParamProblem emitted_within_the_limit(const P& p, const Scene&) {
   return {"velocity_mm_s", "a new particle may leave at up to " + number(fastest) +
                                " mm/s (|velocity_mm_s| + √2 × velocity_jitter_mm_s), past max_speed_mm_s = " +
                                number(p.max_speed_mm_s)};
+}
+
+// A film with depth is pushed apart by its weight into the mucosa: with none (a vertical panel, or
+// an in-plane gravity as strong as Earth's) nothing would, and surface tension, which would, is not
+// modelled for it yet.
+ParamProblem normal_gravity_present(const P& p, const Scene&) {
+  if (!p.film_depth || normal_gravity_mm_s2(p) > 0) return {};
+  return {"gravity_normal_mm_s2", "a film with depth needs gravity into the mucosa, and with gravity_mm_s2 = [" +
+                                      number(p.gravity_x_mm_s2) + ", " + number(p.gravity_y_mm_s2) +
+                                      "] Earth's leaves none; give it, or set film_depth = false"};
+}
+
+// Cohesion pulls touching discs together; between parcels of a film with depth, which overlap as
+// deep as the film is, a pull would be a pressure against its own, and its surface tension is not
+// modelled yet.
+ParamProblem no_cohesion_in_depth(const P& p, const Scene&) {
+  if (!p.film_depth || p.cohesion_mm3_s2 == 0) return {};
+  return {"cohesion_mm3_s2", "a film with depth has no cohesion between its parcels (got " +
+                                 number(p.cohesion_mm3_s2) + "); leave it out, or 0"};
 }
 
 ParamProblem particle_fits_the_panel(const P& p, const Scene& scene) {
@@ -97,16 +119,23 @@ const ParamTable<ParticleParams>& particle_table() {
         "acceleration along the panel; y points down"},
        {"drag_per_s", T::number, BLEEDSIM_MEMBER(P, drag_per_s), "1/s", {0, 1e6},
         "viscous drag against the tissue: a lone particle slides at gravity / drag"},
+       {"film_depth", T::flag, BLEEDSIM_MEMBER(P, film_depth), "", {},
+        "the film has depth: its hydrostatic pressure under gravity_normal_mm_s2 spreads it and pools deepen "
+        "(shallow water), instead of touching particles one layer thick; not on a tissue mesh"},
+       {"gravity_normal_mm_s2", T::number, BLEEDSIM_MEMBER(P, gravity_normal_mm_s2), "mm/s²", {0, 1e6},
+        "with film_depth, gravity into the mucosa: the film's hydrostatic pressure",
+        "0: what Earth's 9810 mm/s² leaves after gravity_mm_s2, √(9810² − |g|²)"},
        {"compression", T::number, BLEEDSIM_MEMBER(P, compression), "", {0, 0.5, true},
         "the deepest pile's overlap, as a fraction of the diameter: sets the contact's stiffness"},
        {"design_depth_mm", T::number, BLEEDSIM_MEMBER(P, design_depth_mm), "mm", {0, 1e4},
-        "the deepest pile the contact is made stiff for", "0: the panel's extent along gravity, or the ring's "
-        "whole capacity heaped into a quarter-disc in a corner, whichever is less"},
+        "the deepest pile the contact is made stiff for; with film_depth, the deepest film the step is made "
+        "stable for", "0: the panel's extent along gravity, or the ring's whole capacity heaped into a quarter-disc "
+        "in a corner, whichever is less; with film_depth, the ring's whole volume pooled against the lowest wall"},
        {"damping_ratio", T::number, BLEEDSIM_MEMBER(P, damping_ratio), "", {0, 1},
         "the contact's dashpot, as a fraction of a pair's critical damping"},
        {"cohesion_mm3_s2", T::number, BLEEDSIM_MEMBER(P, cohesion_mm3_s2), "mm³/s²", {0, 1e6},
         "surface tension: the pull between neighbours, a force per unit length of the film's edge per unit "
-        "density"},
+        "density; none with film_depth", "20, or 0 with film_depth"},
        {"cohesion_range", T::number, BLEEDSIM_MEMBER(P, cohesion_range), "diameters", {0, 2},
         "how far beyond contact cohesion reaches"},
        {"pinning_mm3_s2", T::number, BLEEDSIM_MEMBER(P, pinning_mm3_s2), "mm³/s²", {0, 1e6},
@@ -125,7 +154,8 @@ const ParamTable<ParticleParams>& particle_table() {
         "how long blood stays within rest_speed_mm_s × rest_s of one spot before it sleeps; blood never sleeps "
         "when this is 0 or at least lifetime_s"},
        {"substeps", T::integer, BLEEDSIM_MEMBER(P, substeps), "", {0, double(kMaxSubsteps)},
-        "physics steps per frame, inside the contact's stability limit", "0: the fewest inside the limit"},
+        "physics steps per frame, inside the contact's stability limit (with film_depth, the film's waves')",
+        "0: the fewest inside the limit (with film_depth, and under half a diameter a step at max_speed_mm_s)"},
        {"jitter_mm", T::number, BLEEDSIM_MEMBER(P, jitter_mm), "mm", {0, 100},
         "a new particle is placed up to ± this from its cut, in x and in y"},
        {"velocity_mm_s", T::vector, BLEEDSIM_VECTOR(P, velocity_x_mm_s, velocity_y_mm_s), "mm/s", {-1e5, 1e5},
@@ -136,12 +166,16 @@ const ParamTable<ParticleParams>& particle_table() {
         "how far from its centre a particle's blood spreads in the film: 0 (the diameter) or more",
         "0: the diameter"}},
       {{"fade_s is at most lifetime_s", fade_within_lifetime},
-       {"cell_mm is 0 or at least the range, diameter_mm × (1 + cohesion_range)", cell_holds_the_range},
+       {"cell_mm is 0 or at least the range, diameter_mm × (1 + cohesion_range) (with film_depth, at least the kernel, "
+        "2.6 × diameter_mm)",
+        cell_holds_the_range},
        {"gravity or cohesion is not zero: the contact's stiffness comes from the load it bears", something_to_bear},
        {"diameter_mm is less than the panel's width and height", particle_fits_the_panel},
+       {"with film_depth, gravity into the mucosa is more than 0", normal_gravity_present},
+       {"with film_depth, cohesion_mm3_s2 is 0", no_cohesion_in_depth},
        {"the collision grid has fewer than 4e9 cells", grid_keyable},
-       {"a sub-step, 1 / (frame_rate_hz · substeps), is inside the contact's stability limit "
-        "(docs/particles.md#the-stability-limit), in at most 100000 sub-steps",
+       {"a sub-step, 1 / (frame_rate_hz · substeps), is inside the stability limit of the contact, or with "
+        "film_depth of the film's waves (docs/particles.md#the-stability-limit), in at most 100000 sub-steps",
         substep_inside_stability_limit},
        {"the lifetime is at most 2e9 steps", lifetime_countable},
        {"max_speed_mm_s × the sub-step is less than half a diameter", step_within_a_radius},

@@ -27,6 +27,11 @@ struct ParticleParams {
   double gravity_x_mm_s2 = 0.0;      // along the panel; y points down
   double gravity_y_mm_s2 = 1000.0;
   double drag_per_s = 100.0;         // viscous drag against the tissue
+  // The film with depth (docs/particles.md#a-film-with-depth): the particles are parcels of a
+  // shallow film whose depth is their kernel-summed volume, pushed apart by its hydrostatic
+  // pressure under gravity into the mucosa, instead of touching discs one layer thick.
+  bool film_depth = false;
+  double gravity_normal_mm_s2 = 0.0;  // into the mucosa; 0: what Earth's gravity leaves after gravity_mm_s2
   // The contact: stiff enough that the deepest pile compresses by at most `compression` of a
   // diameter (docs/particles.md derives the stiffness), damped at `damping_ratio` of critical.
   double compression = 0.02;

@@ -238,11 +238,20 @@ std::string describe_particles(const Scene& scene, const Resolved& resolved, con
   const ParticleSettings& settings = settings_of(resolved);
   const ParticleMechanics& m = settings.mechanics;
   const auto g3 = [](double v) { return format_significant(v, 3); };
-  std::string text = "  particles  stiffness " + g3(m.stiffness_per_s2) + "/s² (a " + g3(m.depth_mm) + " mm pile at " +
-                     g3(p.compression) + " compression), " + std::to_string(m.substeps) + " sub-steps of " +
-                     g3(m.dt_s * 1e3) + " ms (limit " + g3(m.step_limit_s * 1e3) + " ms)\n";
+  const std::string limits =
+      p.film_depth ? "limits " + g3(m.step_limit_s * 1e3) + " ms for the waves, " +
+                         g3(p.diameter_mm / (2.0 * p.max_speed_mm_s) * 1e3) + " ms for half a diameter at max_speed_mm_s"
+                   : "limit " + g3(m.step_limit_s * 1e3) + " ms";
+  const std::string steps =
+      std::to_string(m.substeps) + " sub-steps of " + g3(m.dt_s * 1e3) + " ms (" + limits + ")\n";
+  std::string text =
+      p.film_depth
+          ? "  particles  a film with depth: hydrostatic under " + g3(normal_gravity_mm_s2(p)) + " mm/s², kernel " +
+                g3(m.kernel_mm) + " mm, made stable for a " + g3(m.depth_mm) + " mm film, " + steps
+          : "  particles  stiffness " + g3(m.stiffness_per_s2) + "/s² (a " + g3(m.depth_mm) + " mm pile at " +
+                g3(p.compression) + " compression), " + steps;
   const DropLimit& drop = settings.drop;
-  text += "  film       " + g3(m.film_mm) + " mm thick; ";
+  text += "  film       " + g3(m.film_mm) + (p.film_depth ? " mm thick as one layer, deeper where it pools; " : " mm thick; ");
   if (drop.holds_any)
     text += "the mucosa holds any drop against gravity\n";
   else if (drop.volume_mm3 == 0)
