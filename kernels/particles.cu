@@ -196,6 +196,15 @@ __global__ void place_kernel(Args args, BinScratch b) {
   if (t < args.at(ParticlePhase::bin).live_count) take_place(args, b, t);
 }
 
+// A film with depth's depth at each sorted particle, once all are in their places.
+template <class Args>
+__global__ void depth_kernel(Args args) {
+  wait_for_the_kernel_before();
+  const ParticleArgs a = args.at(ParticlePhase::bin);
+  const int i = blockIdx.x * blockDim.x + threadIdx.x;
+  if (i < a.live_count) depth_particle(a.arrays, a.model, i);
+}
+
 // In a whole step the living particle then moves at once: its pair sums are its own slot's, and no
 // thread's collision reads anything but the sorted copies.
 template <class Args, bool kWholeStep>
@@ -274,6 +283,10 @@ __global__ void __launch_bounds__(kClusterThreads, 1) frame_in_one_cluster(Plann
     cluster.sync();
     for (int t = first; t < past; t += kClusterThreads) take_place(args, b, t);
     cluster.sync();
+    if (has_depth(args.base.model)) {
+      for (int i = first; i < past; i += kClusterThreads) depth_particle(args.at(ParticlePhase::bin).arrays, args.base.model, i);
+      cluster.sync();
+    }
     for (int i = first; i < past; i += kClusterThreads) collide<PlannedArgs, true>(args, i);
     cluster.sync();
   }
@@ -371,6 +384,7 @@ void launch_bin(const Args& args, const ParticleArgs& shape, int live_threads, c
   scan_counts(shape.arrays, shape.model, b, stream);
   launch<kWholeStep>(arrive_kernel<Args>, "arrive_kernel", blocks, stream, args, b);
   launch<kWholeStep>(place_kernel<Args>, "place_kernel", blocks, stream, args, b);
+  if (has_depth(shape.model)) launch<kWholeStep>(depth_kernel<Args>, "depth_kernel", blocks, stream, args);
 }
 
 // One phase on its own (the default stream): each its own launches.

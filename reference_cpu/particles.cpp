@@ -112,6 +112,8 @@ void cpu_twin(ParticlePhase phase, const ParticleArgs& a, int threads) {
       break;
     case ParticlePhase::bin:
       bin(a, threads);
+      if (has_depth(a.model))
+        parallel_rows(n, threads_for_particles(n, threads), [&](int i) { depth_particle(a.arrays, a.model, i); });
       break;
     case ParticlePhase::collide:
       parallel_rows(n, threads_for_particles(n, threads), [&](int i) { collide_particle(a.arrays, a.model, i); });

@@ -52,10 +52,14 @@ struct ParticleModel {
   float stiffness;         // 1/s²: contact acceleration per mm of overlap (0: the film has depth)
   float pressure;          // mm/s²: the film with depth's push, this·q·(1 − q)³ at q = r/R (0: a contact)
   float kernel_inverse;    // 1/mm: 1/R, the film's kernel
+  float parcel_depth;      // mm: a parcel's own depth at its centre, V·W(0) = 7V/(π·R²)
+  float area_slope;        // 140·V/(π·R³): a parcel's area V/h times |∇W| is this·q·(1 − q)³/h
   float damping;           // 1/s: contact acceleration per mm/s of approach speed
   float cohesion;          // mm/s²: a neighbour's pull within the range
-  float pinning;           // mm/s²: the grip on a particle of the film's edge
-  float yield;             // mm/s²: the grip on every particle
+  float pinning;           // mm/s²: the grip on a particle of the film's edge (the contact)
+  float yield;             // mm/s²: the grip on every particle (the contact)
+  float yield_stress;      // mm²/s²: a film with depth's yield stress per unit density, τ_y/ρ ...
+  float pinning_line;      // mm³/s²: ... and its contact line's pinning, a force per unit length per unit density
   float edge_openness;     // a particle whose neighbours' directions sum to more than this is on the edge
   float edge_company;      // ... and so is one with fewer neighbours than this (a drop of a few)
   float birth_steps;       // a pair with a particle this new has no force: its overlap is shifted away ...
@@ -86,9 +90,8 @@ struct ParticleModel {
   SurfaceMap surface;      // the tissue mesh's maps; empty on the flat panel
 };
 
-// What collide finds around a particle, for integrate: it is on the film's edge; a neighbour within
-// the range moves faster than the wake speed.
-constexpr std::uint32_t kOnEdge = 1u;
+// What collide finds around a particle, for integrate: a neighbour within the range moves faster
+// than the wake speed.
 constexpr std::uint32_t kStirred = 2u;
 
 // A slot whose age is at least the lifetime holds no particle; a slot never written holds this.
@@ -118,13 +121,15 @@ struct ParticleArrays {
   float* anchor;             // mm: where its rest began
   float* acceleration;       // contact acceleration, collide → integrate
   float* shift;              // mm: the move that undoes overlaps with new particles, collide → integrate
-  std::uint32_t* neighbourhood;  // what collide found around it (kOnEdge, kStirred), collide → integrate
+  float* grip;               // mm/s²: the mucosa's grip on it, collide → integrate
+  std::uint32_t* neighbourhood;  // what collide found around it (kStirred), collide → integrate
   std::uint32_t* cell_key;   // the bin's keys: per slot (CPU); the t-th live slot's (CUDA)
   std::uint32_t* sorted_key;
   std::uint32_t* sorted_slot;
   float* sorted_position;
   float* sorted_velocity;
   std::uint32_t* sorted_age;
+  float* sorted_depth;       // mm: a film with depth's depth at each sorted particle, bin → collide
   // cells + 1 entries: cell c's particles are sorted positions [cell_start[c], cell_start[c + 1]),
   // and cell_start[cells] is the number of living particles.
   std::uint32_t* cell_start;
@@ -370,17 +375,30 @@ BLEEDSIM_HD inline float cohesion_share(const ParticleModel& m, float r) {
 // bounded (and 0 at q = 0), so parcels may overlap as deep as the film is.
 BLEEDSIM_HD inline bool has_depth(const ParticleModel& m) { return m.pressure > 0.0f; }
 
-BLEEDSIM_HD inline float film_push(const ParticleModel& m, float r) {
+// The kernel's slope, |dW/dr|, in units of its largest: q·(1 − q)³ (0 from the kernel's reach on).
+BLEEDSIM_HD inline float kernel_slope(const ParticleModel& m, float r) {
   const float q = r * m.kernel_inverse;
   if (q >= 1.0f) return 0.0f;
   const float rest = 1.0f - q;
-  return m.pressure * q * (rest * rest * rest);
+  return q * (rest * rest * rest);
+}
+
+BLEEDSIM_HD inline float film_push(const ParticleModel& m, float r) { return m.pressure * kernel_slope(m, r); }
+
+// A parcel's depth at distance r from it: V·W(r) = parcel_depth·(1 − q)⁴·(1 + 4q).
+BLEEDSIM_HD inline float parcel_depth_at(const ParticleModel& m, float r) {
+  const float q = r * m.kernel_inverse;
+  if (q >= 1.0f) return 0.0f;
+  const float rest = 1.0f - q, rest_sq = rest * rest;
+  return m.parcel_depth * (rest_sq * rest_sq) * (1.0f + 4.0f * q);
 }
 
 // What a particle's pairs add up to: its acceleration, the shift that undoes its overlaps with new
 // particles, and how its neighbours lie around it.
 struct PairSums {
   float ax = 0.0f, ay = 0.0f;  // mm/s²: the full-grown pairs' forces
+  float depth = 0.0f;          // mm: a film with depth's depth here (bin's) ...
+  float cx = 0.0f, cy = 0.0f;  // 1/mm: ... and the gradient of its colour, Σ (V/h_j)·∇W: the edge's
   float hx = 0.0f, hy = 0.0f;  // mm: half of each overlap with a new particle, away from it
   float sx = 0.0f, sy = 0.0f;  // the directions to the neighbours, weighted as the cohesion
   float company = 0.0f;        // the weights
@@ -438,9 +456,23 @@ BLEEDSIM_HD inline void add_pair(const ParticleModel& m, float dx, float dy, flo
   sums->ay += force * ny;
 }
 
+// The mucosa's grip on a particle (docs/particles.md#the-mucosas-grip): static friction up to the
+// yield for every particle, and up to the pinning besides for one on the film's edge (its
+// neighbours all on one side, or too few to surround it), where the contact line holds. A film
+// with depth has them as a stress and a force per unit length of the contact line: the parcel's
+// area V/h bears the yield stress, and its share of the line, (V/h)·|∇c| (which sums to the
+// film's perimeter, c the film's colour), the pinning; per unit mass, (τ_y/ρ + q_p·|∇c|)/h.
+BLEEDSIM_HD inline float grip_from(const ParticleModel& m, const PairSums& sums) {
+  if (has_depth(m))
+    return (m.yield_stress + m.pinning_line * sqrtf(sums.cx * sums.cx + sums.cy * sums.cy)) / sums.depth;
+  const bool on_edge = sums.sx * sums.sx + sums.sy * sums.sy > m.edge_openness * m.edge_openness ||
+                       sums.company < m.edge_company;
+  return on_edge ? m.yield + m.pinning : m.yield;
+}
+
 // A particle's acceleration and shift from its pair sums, the shift no longer than birth_speed·dt
-// (so a burst parts at no more than that speed); whether it is on the film's edge (its neighbours
-// all on one side, or too few to surround it) and whether a neighbour moves fast enough to wake it.
+// (so a burst parts at no more than that speed); its grip, and whether a neighbour moves fast
+// enough to wake it.
 BLEEDSIM_HD inline void finish_pair_sums(const ParticleArrays& p, const ParticleModel& m, std::uint32_t slot,
                                          const PairSums& sums) {
   float hx = sums.hx, hy = sums.hy;
@@ -452,9 +484,8 @@ BLEEDSIM_HD inline void finish_pair_sums(const ParticleArrays& p, const Particle
   }
   set_pair(p.acceleration, slot, {sums.ax, sums.ay});
   set_pair(p.shift, slot, {hx, hy});
-  const bool on_edge = sums.sx * sums.sx + sums.sy * sums.sy > m.edge_openness * m.edge_openness ||
-                       sums.company < m.edge_company;
-  p.neighbourhood[slot] = (on_edge ? kOnEdge : 0u) | (sums.fastest_sq > m.wake_speed_sq ? kStirred : 0u);
+  p.grip[slot] = grip_from(m, sums);
+  p.neighbourhood[slot] = sums.fastest_sq > m.wake_speed_sq ? kStirred : 0u;
 }
 
 // A film with depth meets the panel's edges as its own mirror image (docs/particles.md#walls-of-a-
@@ -466,16 +497,9 @@ BLEEDSIM_HD inline void finish_pair_sums(const ParticleArrays& p, const Particle
 // every image that reaches p. An image at p itself (a parcel on the wall's line) has no direction
 // and, on the line, no push to give. Of two opposite walls both within reach (a panel narrower than
 // two ranges) only the low one mirrors.
-BLEEDSIM_HD inline void add_image(const ParticleModel& m, float dx, float dy, PairSums* sums) {
-  const float r2 = dx * dx + dy * dy;
-  if (r2 <= 0.0f || r2 >= m.range_sq) return;
-  const float r = sqrtf(r2), push = film_push(m, r) / r;
-  sums->ax += push * dx;
-  sums->ay += push * dy;
-}
-
-BLEEDSIM_HD inline void add_wall_images(const ParticleModel& m, float px, float py, float qx, float qy,
-                                        PairSums* sums) {
+template <class Visit>
+BLEEDSIM_HD inline void for_each_wall_image(const ParticleModel& m, float px, float py, float qx, float qy,
+                                            Visit visit) {
   const float reach = m.range_mm;
   // The image of q across a wall at w is 2w − q: p − (2w − q) = (p − w) + (q − w).
   const bool near_low_x = px - m.min_x < reach, near_high_x = m.max_x - px < reach;
@@ -483,9 +507,33 @@ BLEEDSIM_HD inline void add_wall_images(const ParticleModel& m, float px, float 
   const float ix = near_low_x ? (px - m.min_x) + (qx - m.min_x) : (px - m.max_x) + (qx - m.max_x);
   const float iy = near_low_y ? (py - m.min_y) + (qy - m.min_y) : (py - m.max_y) + (qy - m.max_y);
   const bool by_x = near_low_x || near_high_x, by_y = near_low_y || near_high_y;
-  if (by_x) add_image(m, ix, py - qy, sums);
-  if (by_y) add_image(m, px - qx, iy, sums);
-  if (by_x && by_y) add_image(m, ix, iy, sums);
+  const auto image = [&](float dx, float dy) {
+    const float r2 = dx * dx + dy * dy;
+    if (r2 > 0.0f && r2 < m.range_sq) visit(dx, dy, r2);
+  };
+  if (by_x) image(ix, py - qy);
+  if (by_y) image(px - qx, iy);
+  if (by_x && by_y) image(ix, iy);
+}
+
+// The edge's part of the film with depth's pair: the colour's gradient, toward the neighbour at
+// offset (dx, dy), of depth h_j: (V/h_j)·|∇W|.
+BLEEDSIM_HD inline void add_colour(const ParticleModel& m, float dx, float dy, float r, float other_depth,
+                                   PairSums* sums) {
+  const float toward = m.area_slope * kernel_slope(m, r) / (other_depth * r);
+  sums->cx -= toward * dx;
+  sums->cy -= toward * dy;
+}
+
+// An image of a parcel of depth `depth` pushes and colours as the parcel would.
+BLEEDSIM_HD inline void add_wall_images(const ParticleModel& m, float px, float py, float qx, float qy, float depth,
+                                        PairSums* sums) {
+  for_each_wall_image(m, px, py, qx, qy, [&](float dx, float dy, float r2) {
+    const float r = sqrtf(r2), push = film_push(m, r) / r;
+    sums->ax += push * dx;
+    sums->ay += push * dy;
+    add_colour(m, dx, dy, r, depth, sums);
+  });
 }
 
 // The sorted positions [begin, end) of the particles in cells x0 … x1 of row y: the cells of a row
@@ -498,24 +546,18 @@ BLEEDSIM_HD inline SortedRun row_run(const ParticleArrays& p, const ParticleMode
   return {p.cell_start[row + std::uint32_t(x0)], p.cell_start[row + std::uint32_t(x1) + 1]};
 }
 
-// The pair forces on the particle at sorted position i from every neighbour in the 3 × 3 cells
+// Visits every neighbour of the particle at sorted position i within the range, in the 3 × 3 cells
 // around its own: row by row, each row's cells left to right and their particles in sorted order
-// (one run of the sorted order a row). No cap on a crowded cell: a pair's forces are summed from
-// both sides or from neither. A neighbour's velocity and age are read only once it is within the
-// range (about a third of the particles of the 3 × 3 cells are), and its slot only when it
-// coincides with this one (the slot names the pair's direction only then).
-BLEEDSIM_HD inline void collide_particle(const ParticleArrays& p, const ParticleModel& m, int i) {
+// (one run of the sorted order a row), as visit(j, qx, qy, dx, dy, r2) with (dx, dy) = p − q on
+// the surface. No cap on a crowded cell: a pair is visited from both sides or from neither.
+template <class Visit>
+BLEEDSIM_HD inline void for_each_neighbour(const ParticleArrays& p, const ParticleModel& m, int i, Visit visit) {
   const std::uint32_t key = p.sorted_key[i];
-  if (key == sentinel_key(m)) return;
   const int cx = int(key % std::uint32_t(m.cells_x));
   const int cy = int(key / std::uint32_t(m.cells_x));
-  const std::uint32_t slot = p.sorted_slot[i];
   const auto [px, py] = pair_at(p.sorted_position, std::size_t(i));
-  const auto [vx, vy] = pair_at(p.sorted_velocity, std::size_t(i));
-  const std::uint32_t age = p.sorted_age[i];
   const int x0 = cx > 0 ? cx - 1 : 0, x1 = cx + 1 < m.cells_x ? cx + 1 : cx;
   const SurfaceFrame own = curved(m.surface) ? frame_at(m.surface, px, py) : SurfaceFrame{1.0f, 0.0f, 1.0f};
-  PairSums sums;
   for (int ny = cy - 1; ny <= cy + 1; ++ny) {
     if (ny < 0 || ny >= m.cells_y) continue;
     const SortedRun run = row_run(p, m, ny, x0, x1);
@@ -525,24 +567,56 @@ BLEEDSIM_HD inline void collide_particle(const ParticleArrays& p, const Particle
       float dx = px - qx, dy = py - qy;
       if (curved(m.surface)) to_surface(pair_frame(own, frame_at(m.surface, qx, qy)), dx, dy, &dx, &dy);
       const float r2 = dx * dx + dy * dy;
-      if (r2 >= m.range_sq) continue;
-      const std::uint32_t other = r2 > 0.0f ? 0u : p.sorted_slot[j];
-      const FloatPair w = pair_at(p.sorted_velocity, j);
-      add_pair(m, dx, dy, vx, vy, age, slot, w.x, w.y, p.sorted_age[j], other, &sums);
-      if (has_depth(m)) add_wall_images(m, px, py, qx, qy, &sums);
+      if (r2 < m.range_sq) visit(j, qx, qy, dx, dy, r2);
     }
   }
-  if (has_depth(m)) add_wall_images(m, px, py, px, py, &sums);
+}
+
+// A film with depth's depth at the particle at sorted position i (bin's last pass): its own parcel,
+// its neighbours' and the walls' images of both, in the neighbours' order.
+BLEEDSIM_HD inline void depth_particle(const ParticleArrays& p, const ParticleModel& m, int i) {
+  if (p.sorted_key[i] == sentinel_key(m)) return;
+  const auto [px, py] = pair_at(p.sorted_position, std::size_t(i));
+  float depth = m.parcel_depth;
+  const auto add_images = [&](float qx, float qy) {
+    for_each_wall_image(m, px, py, qx, qy, [&](float, float, float r2) { depth += parcel_depth_at(m, sqrtf(r2)); });
+  };
+  for_each_neighbour(p, m, i, [&](std::uint32_t, float qx, float qy, float, float, float r2) {
+    depth += parcel_depth_at(m, sqrtf(r2));
+    add_images(qx, qy);
+  });
+  add_images(px, py);
+  p.sorted_depth[i] = depth;
+}
+
+// The pair forces on the particle at sorted position i from every neighbour within the range
+// (for_each_neighbour). A neighbour's velocity and age are read only once it is within the range
+// (about a third of the particles of the 3 × 3 cells are), and its slot only when it coincides
+// with this one (the slot names the pair's direction only then). A film with depth adds its edge's
+// colour and the walls' images.
+BLEEDSIM_HD inline void collide_particle(const ParticleArrays& p, const ParticleModel& m, int i) {
+  if (p.sorted_key[i] == sentinel_key(m)) return;
+  const std::uint32_t slot = p.sorted_slot[i];
+  const auto [px, py] = pair_at(p.sorted_position, std::size_t(i));
+  const auto [vx, vy] = pair_at(p.sorted_velocity, std::size_t(i));
+  const std::uint32_t age = p.sorted_age[i];
+  const bool deep = has_depth(m);
+  PairSums sums;
+  if (deep) sums.depth = p.sorted_depth[i];
+  for_each_neighbour(p, m, i, [&](std::uint32_t j, float qx, float qy, float dx, float dy, float r2) {
+    const std::uint32_t other = r2 > 0.0f ? 0u : p.sorted_slot[j];
+    const FloatPair w = pair_at(p.sorted_velocity, j);
+    add_pair(m, dx, dy, vx, vy, age, slot, w.x, w.y, p.sorted_age[j], other, &sums);
+    if (!deep) return;
+    const float other_depth = p.sorted_depth[j];
+    if (r2 > 0.0f) add_colour(m, dx, dy, sqrtf(r2), other_depth, &sums);
+    add_wall_images(m, px, py, qx, qy, other_depth, &sums);
+  });
+  if (deep) add_wall_images(m, px, py, px, py, sums.depth, &sums);
   finish_pair_sums(p, m, slot, sums);
 }
 
 // ---- integrate ---------------------------------------------------------------------------------
-
-// The mucosa's grip on a particle: static friction up to the yield for every particle, and up to
-// the pinning besides for one on the film's edge, where the contact line holds.
-BLEEDSIM_HD inline float grip(const ParticleModel& m, std::uint32_t neighbourhood) {
-  return (neighbourhood & kOnEdge) ? m.yield + m.pinning : m.yield;
-}
 
 // An aspirated particle ages in its slot, and is counted when its lifetime runs out, as the
 // accounting counts its id expired then. Of the rest of a step only emission, which may give the
@@ -601,8 +675,8 @@ BLEEDSIM_HD inline bool asleep(const ParticleModel& m, std::uint32_t rest) {
 
 // The grip as the step takes it is grip·(1 + γ·dt): a particle held by its grip is within it.
 BLEEDSIM_HD inline bool stays_asleep(const ParticleModel& m, float fx, float fy, std::uint32_t neighbourhood,
-                                     FloatPair shift) {
-  const float most = 2.0f * grip(m, neighbourhood) * m.drag_divisor;
+                                     float grip, FloatPair shift) {
+  const float most = 2.0f * grip * m.drag_divisor;
   return (neighbourhood & kStirred) == 0u && fx * fx + fy * fy <= most * most && shift.x == 0.0f &&
          shift.y == 0.0f;
 }
@@ -646,7 +720,8 @@ BLEEDSIM_HD inline void integrate_particle(const ParticleArrays& p, const Partic
   const FloatPair shift = pair_at(p.shift, std::size_t(slot));
   const std::uint32_t neighbourhood = p.neighbourhood[slot];
   const std::uint32_t rest = p.rest[slot];
-  if (asleep(m, rest) && stays_asleep(m, fx, fy, neighbourhood, shift)) {
+  const float grip = p.grip[slot];
+  if (asleep(m, rest) && stays_asleep(m, fx, fy, neighbourhood, grip, shift)) {
     p.age[slot] = age + 1;
     return;
   }
@@ -654,7 +729,7 @@ BLEEDSIM_HD inline void integrate_particle(const ParticleArrays& p, const Partic
   float vy = (v0.y + m.dt_s * fy) / m.drag_divisor;
   wall_damped(m, frame, x0, y0, &vx, &vy);
   const float speed_sq = vx * vx + vy * vy;
-  const float held = grip(m, neighbourhood) * m.dt_s;
+  const float held = grip * m.dt_s;
   if (speed_sq <= held * held) {
     vx = 0.0f;
     vy = 0.0f;

@@ -189,5 +189,55 @@ TEST(FilmDepth, TheFilmFieldReportsThePoolsDepth) {
   EXPECT_NEAR(film_at(2.0), h0 - 2 * kSlope, bound);
 }
 
+// The grip of a film with depth is a yield stress over each parcel's area and a pinning along
+// the contact line: per unit mass (τ_y/ρ + q_p·|∇c|)/h. Far inside a uniform film (no colour
+// gradient, no pressure gradient) a parcel feels gravity g_t and that grip alone, so the film is a
+// Bingham film: it stays where it is while g_t·h ≤ τ_y/ρ, and above that slides at the discrete
+// terminal speed v_T = (g_t − (τ_y/ρ)/h·(1 + γ·dt))/γ (the drag and the grip taken implicitly, as a
+// lone particle's: tests/effects/particle_rest_test.cpp). A 12 × 12 mm square of parcels on a
+// hexagonal lattice, its spacing set for a depth 0.8 and 1.25 times the yield depth
+// (τ_y/ρ)/g_t = 0.05 mm, watched for 0.06 s: six of the drag's 1/γ, so the terminal speed is reached
+// to e⁻⁶ (0.25 %). Its edges are not uniform (their pressure pushes out, the pinning holds), and
+// what they do travels inwards at the film's wave speed √(g_n·h), 24 mm/s here: 1.5 mm in that
+// time. The interior is what lies further than 2.5 mm from every edge; the test sums its depth
+// itself.
+TEST(FilmDepth, AFilmThinnerThanItsYieldDepthStaysAndAThickerOneSlidesAtItsTerminalSpeed) {
+  for (const double share : {0.8, 1.25}) {
+    ParticleParams p = pool_params(0.2);
+    p.yield_mm2_s2 = ParticleParams{}.yield_mm2_s2;
+    p.pinning_mm3_s2 = ParticleParams{}.pinning_mm3_s2;
+    const double yield_depth = p.yield_mm2_s2 / kAlong, depth = share * yield_depth;
+    const double spacing = std::sqrt(p.particle_volume_mm3 / (depth * std::sqrt(3.0) / 2.0)) / p.diameter_mm;
+    const Scene scene = test::box_scene(20.0, 40.0, p);
+    const int columns = int(12.0 / (spacing * p.diameter_mm));
+    std::vector<Point> points = test::hex_block(scene, columns, int(12.0 / (spacing * p.diameter_mm * 0.866)), 4.0, spacing);
+    for (Point& q : points) q.y -= 20.0;  // well above the floor
+    ParticleBox box(scene, points);
+    box.run_for(0.06);
+    const double support = kKernelSupport * p.diameter_mm, dt = box.dt(), margin = 2.5;
+    double slowest = 1e9, fastest = 0.0, worst = 0.0;
+    int interior = 0;
+    for (int i = 0; i < box.size(); ++i) {
+      const Point at = points[std::size_t(i)];
+      if (at.x < 4.0 + margin || at.x > 16.0 - margin || at.y < 8.0 + margin || at.y > 20.0 - margin) continue;
+      double h = 0.0;
+      for (int j = 0; j < box.size(); ++j)
+        h += p.particle_volume_mm3 * wendland(std::hypot(box.position(i).x - box.position(j).x,
+                                                         box.position(i).y - box.position(j).y),
+                                              support);
+      const double terminal = std::max(0.0, (kAlong - p.yield_mm2_s2 / h * (1.0 + p.drag_per_s * dt)) / p.drag_per_s);
+      slowest = std::min(slowest, box.speed(i));
+      fastest = std::max(fastest, box.speed(i));
+      worst = std::max(worst, std::abs(box.speed(i) - terminal));
+      ++interior;
+    }
+    std::cout << "a film " << share << " × the yield depth: " << interior << " interior parcels at " << slowest << " to "
+              << fastest << " mm/s, at most " << worst << " mm/s from their terminal speed" << std::endl;
+    ASSERT_GT(interior, 100);
+    if (share < 1.0) EXPECT_EQ(fastest, 0.0);
+    else EXPECT_LE(worst, 0.01 * (kAlong - p.yield_mm2_s2 / depth) / p.drag_per_s);
+  }
+}
+
 }  // namespace
 }  // namespace bleedsim

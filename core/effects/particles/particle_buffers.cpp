@@ -8,8 +8,8 @@ namespace {
 
 // Offsets of the scratch arrays, one after another, each aligned for vector loads.
 struct ScratchLayout {
-  std::size_t acceleration, shift, neighbourhood, cell_key, sorted_key, sorted_slot, sorted_position, sorted_velocity,
-      sorted_age, cell_start, fates, sort_scratch, total;
+  std::size_t acceleration, shift, grip, neighbourhood, cell_key, sorted_key, sorted_slot, sorted_position,
+      sorted_velocity, sorted_age, sorted_depth, cell_start, fates, sort_scratch, total;
 
   ScratchLayout(std::size_t cells, int capacity, std::size_t sort_scratch_bytes) {
     const std::size_t n = std::size_t(capacity);
@@ -21,6 +21,7 @@ struct ScratchLayout {
     };
     acceleration = take(2 * n * sizeof(float));
     shift = take(2 * n * sizeof(float));
+    grip = take(n * sizeof(float));
     neighbourhood = take(n * sizeof(std::uint32_t));
     cell_key = take(n * sizeof(std::uint32_t));
     sorted_key = take(n * sizeof(std::uint32_t));
@@ -28,6 +29,7 @@ struct ScratchLayout {
     sorted_position = take(2 * n * sizeof(float));
     sorted_velocity = take(2 * n * sizeof(float));
     sorted_age = take(n * sizeof(std::uint32_t));
+    sorted_depth = take(n * sizeof(float));
     cell_start = take((cells + 1) * sizeof(std::uint32_t));
     fates = take(sizeof(AspiratedFates));
     sort_scratch = take(sort_scratch_bytes);
@@ -50,6 +52,7 @@ void point_particle_scratch(ParticleArrays& a, std::size_t cells, void* base, st
   const ScratchLayout layout(cells, a.capacity, sort_scratch_bytes);
   a.acceleration = at_offset<float>(base, layout.acceleration);
   a.shift = at_offset<float>(base, layout.shift);
+  a.grip = at_offset<float>(base, layout.grip);
   a.neighbourhood = at_offset<std::uint32_t>(base, layout.neighbourhood);
   a.cell_key = at_offset<std::uint32_t>(base, layout.cell_key);
   a.sorted_key = at_offset<std::uint32_t>(base, layout.sorted_key);
@@ -57,6 +60,7 @@ void point_particle_scratch(ParticleArrays& a, std::size_t cells, void* base, st
   a.sorted_position = at_offset<float>(base, layout.sorted_position);
   a.sorted_velocity = at_offset<float>(base, layout.sorted_velocity);
   a.sorted_age = at_offset<std::uint32_t>(base, layout.sorted_age);
+  a.sorted_depth = at_offset<float>(base, layout.sorted_depth);
   a.cell_start = at_offset<std::uint32_t>(base, layout.cell_start);
   a.fates = at_offset<AspiratedFates>(base, layout.fates);
   a.sort_scratch = sort_scratch_bytes ? at_offset<void>(base, layout.sort_scratch) : nullptr;
@@ -71,6 +75,7 @@ void clear_particles(Backend& backend, const ParticleArrays& a) {
   backend.upload(a.anchor, zeros.data(), 2 * n * sizeof(float));
   backend.upload(a.acceleration, zeros.data(), 2 * n * sizeof(float));
   backend.upload(a.shift, zeros.data(), 2 * n * sizeof(float));
+  backend.upload(a.grip, zeros.data(), n * sizeof(float));
   std::vector<std::uint32_t> words(n, 0u);
   backend.upload(a.neighbourhood, words.data(), n * sizeof(std::uint32_t));
   backend.upload(a.rest, words.data(), n * sizeof(std::uint32_t));

@@ -234,7 +234,7 @@ ParticleSettings resolve_particles(const ParticleParams& p, const Scene& scene) 
   settings.lifetime = {steps, std::min(steps, steps_in(p.fade_s, settings.steps_per_s))};
   settings.cells = particle_grid_cells(mech.cell_mm / stretch, scene.domain.width_mm, scene.domain.height_mm);
   settings.splat = make_splat_model(p, scene.domain);
-  settings.drop = critical_drop(p, mech);
+  if (!p.film_depth) settings.drop = critical_drop(p, mech);
 
   const double r = p.diameter_mm / 2.0;
   // A disc touches a wall a radius from it; a parcel of a film with depth reaches the wall itself.
@@ -250,10 +250,19 @@ ParticleSettings resolve_particles(const ParticleParams& p, const Scene& scene) 
   m.stiffness = float(mech.stiffness_per_s2);
   m.damping = float(mech.damping_per_s);
   m.pressure = float(mech.pressure_mm_s2);
-  m.kernel_inverse = mech.kernel_mm > 0.0 ? float(1.0 / mech.kernel_mm) : 0.0f;
   m.cohesion = float(mech.cohesion_mm_s2);
-  m.pinning = float(mech.pinning_mm_s2);
-  m.yield = float(mech.yield_mm_s2);
+  if (p.film_depth) {
+    // The grip as a stress and a line force (grip_from), the kernel's depth and slope per parcel.
+    const double kernel = mech.kernel_mm, v = p.particle_volume_mm3;
+    m.kernel_inverse = float(1.0 / kernel);
+    m.parcel_depth = float(7.0 * v / (M_PI * kernel * kernel));
+    m.area_slope = float(140.0 * v / (M_PI * kernel * kernel * kernel));
+    m.yield_stress = float(p.yield_mm2_s2);
+    m.pinning_line = float(p.pinning_mm3_s2);
+  } else {
+    m.pinning = float(mech.pinning_mm_s2);
+    m.yield = float(mech.yield_mm_s2);
+  }
   m.edge_openness = kEdgeOpenness;
   m.edge_company = kEdgeCompany;
   m.birth_steps = float(steps_in(p.birth_s, 1.0 / dt));

@@ -93,7 +93,7 @@ struct ParticleSettings {
   Count cells;                  // of the collision grid (cell_count() of the model; the memory estimate's)
   ParticleModel model;          // the constants both backends read (its surface map the stage's to set)
   SplatModel splat;             // the film's footprint (make_splat_model)
-  DropLimit drop;               // the largest drop the mucosa holds
+  DropLimit drop;               // the largest drop the mucosa holds (the contact's; none for a film with depth)
 };
 // `params` on this scene's panel, frame rate and tissue mesh (a scene's own: scene.effects'). Only
 // for parameters that particle_table() accepts.

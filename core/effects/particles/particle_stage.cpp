@@ -231,6 +231,25 @@ namespace {
 
 void resolve_settings(const Scene& scene, Resolved& resolved) { resolved.set(resolve_particles(scene)); }
 
+// The film the particles make, and what of it the mucosa holds against gravity. A film with depth's
+// round patch of depth h and radius r stays while ρ·πr²·h·g ≤ τ_y·πr² + ρ·q_p·2πr.
+std::string describe_film(const ParticleParams& p, const ParticleSettings& settings) {
+  const auto g3 = [](double v) { return format_significant(v, 3); };
+  if (p.film_depth) {
+    const double g = std::hypot(p.gravity_x_mm_s2, p.gravity_y_mm_s2);
+    if (g == 0) return "  film       as deep as it pools; nothing pulls it along the panel\n";
+    return "  film       as deep as it pools; the mucosa holds a film up to " + g3(p.yield_mm2_s2 / g) +
+           " mm deep against gravity (its yield stress), and a round drop of radius r up to (" + g3(p.yield_mm2_s2) +
+           " + 2 × " + g3(p.pinning_mm3_s2) + " / r) / " + g3(g) + " mm deep (its contact line's pinning)\n";
+  }
+  const DropLimit& drop = settings.drop;
+  const std::string film = "  film       " + g3(settings.mechanics.film_mm) + " mm thick; ";
+  if (drop.holds_any) return film + "the mucosa holds any drop against gravity\n";
+  if (drop.volume_mm3 == 0) return film + "the mucosa holds no drop against gravity (no pinning)\n";
+  return film + "the mucosa holds drops up to " + g3(drop.volume_mm3) + " mm³ (radius " + g3(drop.radius_mm) +
+         " mm) against gravity\n";
+}
+
 // The particle model as the parameters make it (docs/particles.md): the contact, the time step, the
 // largest drop the mucosa holds, and whether the ring can hold all the blood the cuts give.
 std::string describe_particles(const Scene& scene, const Resolved& resolved, const RunOutline& run) {
@@ -250,15 +269,7 @@ std::string describe_particles(const Scene& scene, const Resolved& resolved, con
                 g3(m.kernel_mm) + " mm, made stable for a " + g3(m.depth_mm) + " mm film, " + steps
           : "  particles  stiffness " + g3(m.stiffness_per_s2) + "/s² (a " + g3(m.depth_mm) + " mm pile at " +
                 g3(p.compression) + " compression), " + steps;
-  const DropLimit& drop = settings.drop;
-  text += "  film       " + g3(m.film_mm) + (p.film_depth ? " mm thick as one layer, deeper where it pools; " : " mm thick; ");
-  if (drop.holds_any)
-    text += "the mucosa holds any drop against gravity\n";
-  else if (drop.volume_mm3 == 0)
-    text += "the mucosa holds no drop against gravity (no pinning)\n";
-  else
-    text += "the mucosa holds drops up to " + g3(drop.volume_mm3) + " mm³ (radius " + g3(drop.radius_mm) +
-            " mm) against gravity\n";
+  text += describe_film(p, settings);
   const ParticleModel& model = settings.model;
   if (model.rest_steps == 0 || model.rest_steps >= model.lifetime.steps)
     text += "  rest       blood never sleeps (rest_s is 0 or at least lifetime_s)\n";
