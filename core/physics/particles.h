@@ -576,7 +576,9 @@ BLEEDSIM_HD inline void for_each_neighbour(const ParticleArrays& p, const Partic
 // its neighbours' and the walls' images of both, in the neighbours' order.
 BLEEDSIM_HD inline void depth_particle(const ParticleArrays& p, const ParticleModel& m, int i) {
   if (p.sorted_key[i] == sentinel_key(m)) return;
-  const auto [px, py] = pair_at(p.sorted_position, std::size_t(i));
+  // Named, not bound: a lambda may not capture a structured binding before C++20 (clang refuses it).
+  const FloatPair at = pair_at(p.sorted_position, std::size_t(i));
+  const float px = at.x, py = at.y;
   float depth = m.parcel_depth;
   const auto add_images = [&](float qx, float qy) {
     for_each_wall_image(m, px, py, qx, qy, [&](float, float, float r2) { depth += parcel_depth_at(m, sqrtf(r2)); });
@@ -597,8 +599,9 @@ BLEEDSIM_HD inline void depth_particle(const ParticleArrays& p, const ParticleMo
 BLEEDSIM_HD inline void collide_particle(const ParticleArrays& p, const ParticleModel& m, int i) {
   if (p.sorted_key[i] == sentinel_key(m)) return;
   const std::uint32_t slot = p.sorted_slot[i];
-  const auto [px, py] = pair_at(p.sorted_position, std::size_t(i));
-  const auto [vx, vy] = pair_at(p.sorted_velocity, std::size_t(i));
+  const FloatPair at = pair_at(p.sorted_position, std::size_t(i));
+  const FloatPair own_velocity = pair_at(p.sorted_velocity, std::size_t(i));
+  const float px = at.x, py = at.y, vx = own_velocity.x, vy = own_velocity.y;
   const std::uint32_t age = p.sorted_age[i];
   const bool deep = has_depth(m);
   PairSums sums;
