@@ -52,12 +52,13 @@ void set_substeps(Scene& s, double n) {
 // the film, the pile's area and the blood's volume stay; only how finely it is sampled changes. The
 // compression stays, so the stiffness per unit mass follows as 1/d² (what the same compression
 // means at another size), and the time step stays: a size whose contact it cannot hold is refused.
+// A splat radius the scene gives stays what it says in mm, so that every size draws its blood with
+// the same footprint (issue 36's ladder); one it leaves at 0 follows the diameter.
 void set_particle_size(Scene& s, double f) {
   pin_particle_model(s);
   ParticleParams& p = s.effects.get<ParticleParams>();
   p.diameter_mm *= f;
   if (p.cell_mm > 0) p.cell_mm *= f;
-  if (p.splat_radius_mm > 0) p.splat_radius_mm *= f;
   p.particle_volume_mm3 *= f * f;
   p.capacity = int(std::min(double(1 << 28), std::ceil(p.capacity / (f * f))));
 }
@@ -135,7 +136,8 @@ const std::vector<Knob>& knobs() {
        "the particles' diameter, as a factor: larger particles are fewer and cheaper, and sample the "
        "flow and the film more coarsely",
        "the blood (its volume, flow and film), the compression, the surface tension and grip per unit "
-       "length, the time step (a size whose contact it cannot hold is refused)",
+       "length, a splat radius the scene gives, the time step (a size whose contact it cannot hold is "
+       "refused)",
        false, false, kNaN, nullptr, has_particles, [](const Scene&) { return 1.0; },
        [](const Scene&) { return std::vector<double>{4.0, 2.0, 1.0}; }, set_particle_size},
       {"blur_radius",

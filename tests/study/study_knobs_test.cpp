@@ -89,6 +89,18 @@ TEST(StudyKnobs, AContactTooStiffForTheTimeStepIsRefusedNotSoftened) {
   EXPECT_NE(scene_problem(small).text().find("past the contact's stability limit"), std::string::npos);
 }
 
+// Issue 36's ladder draws every size with the same footprint: a splat radius the scene gives stays
+// in mm along particle_size; one left at 0 (the diameter) follows the particles.
+TEST(StudyKnobs, ParticleSizeKeepsTheSplatRadiusTheSceneGives) {
+  Scene given = full_scene();
+  given.effects.get<ParticleParams>().splat_radius_mm = 0.4;
+  find_knob("particle_size")->apply(given, 0.25);
+  EXPECT_FLOAT_EQ(resolve_particles(given).splat.radius_mm, 0.4f);
+  Scene left = full_scene();
+  find_knob("particle_size")->apply(left, 0.25);
+  EXPECT_FLOAT_EQ(resolve_particles(left).splat.radius_mm, float(0.25 * ParticleParams{}.diameter_mm));
+}
+
 TEST(StudyKnobs, ResolutionResamplesAVesselMapReadFromAFile) {
   // By area means: a constant map stays that constant. (The procedural tissue and vessels are drawn
   // again from the scene's own seed: StudySeeds.MoveThePhysicsAndLeaveTheTissueAlone.)
