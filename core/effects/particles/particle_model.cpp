@@ -158,9 +158,9 @@ ParamProblem substep_inside_stability_limit(const ParticleParams& p, const Scene
   ParticleParams fewest = p;
   fewest.substeps = 0;
   const int needed = particle_mechanics(fewest, scene).substeps;
-  // No sub-step count the scene could give would do: the particles make the contact too stiff.
   const std::string remedy = p.film_depth ? "a smaller design_depth_mm" : "more compression";
   const std::string what = p.film_depth ? "the film's waves" : "the contact";
+  // No sub-step count the scene could give would do: the particles make the step too short.
   if (needed > kMaxSubsteps)
     return {"diameter_mm", "particles of " + number(p.diameter_mm) + " mm make " + what +
                                (p.film_depth ? " so fast (" : " so stiff (") + what_limits_the_step(p, m) +
@@ -175,11 +175,6 @@ ParamProblem substep_inside_stability_limit(const ParticleParams& p, const Scene
                           number(m.step_limit_s * 1e3) + " ms (" + details + ", drag " + number(p.drag_per_s) +
                           "/s); use at least " + std::to_string(needed) +
                           " sub-steps per frame (0 takes the fewest), larger particles, or " + remedy};
-  return {"substeps", "a sub-step of " + number(m.dt_s * 1e3) + " ms is past the stability limit of " +
-                          number(m.step_limit_s * 1e3) + " ms (" + what_limits_the_step(p, m) + ", damping " +
-                          number(m.damping_per_s) + "/s, drag " + number(p.drag_per_s) + "/s); use at least " +
-                          std::to_string(needed) + " sub-steps per frame (0 takes the fewest), larger particles, or " +
-                          remedy};
 }
 
 // A particle at the speed limit moves less than a radius a step, so none passes through another
