@@ -15,7 +15,7 @@ BLEEDSIM_HD inline void all_pairs_accumulate(const ParticleModel& m, float px, f
                                              std::uint32_t age, std::uint32_t slot, float qx, float qy, float wx,
                                              float wy, std::uint32_t other_age, std::uint32_t other, PairSums* sums) {
   if (other == slot || !is_alive(m, other_age)) return;
-  add_pair(m, px - qx, py - qy, vx, vy, age, slot, wx, wy, other_age, other, sums);
+  add_pair(m, px - qx, py - qy, vx, vy, pair_growth(m, age, other_age), slot, wx, wy, other, sums);
 }
 
 // Contact phase by all pairs, over host memory on `threads` threads.

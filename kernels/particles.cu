@@ -186,7 +186,7 @@ __device__ void take_place(const Args& args, const BinScratch& b, int t) {
   for (std::uint32_t j = start; j < end; ++j) i += b.unordered[j] < std::uint32_t(t) ? 1u : 0u;
   p.sorted_key[i] = key;
   p.sorted_slot[i] = std::uint32_t(nth_live_slot_ascending(a, t));
-  gather_sorted(p, int(i));
+  gather_sorted(p, a.model, int(i));
 }
 
 template <class Args>

@@ -95,7 +95,7 @@ void bin(const ParticleArgs& a, int threads) {
       const std::uint32_t to = cell_next[living_one.key - first_cell]++;
       p.sorted_key[to] = living_one.key;
       p.sorted_slot[to] = living_one.slot;
-      gather_sorted(p, int(to));
+      gather_sorted(p, m, int(to));
     }
   });
   p.cell_start[cells] = living;

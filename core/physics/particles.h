@@ -63,6 +63,7 @@ struct ParticleModel {
   float edge_openness;     // a particle whose neighbours' directions sum to more than this is on the edge
   float edge_company;      // ... and so is one with fewer neighbours than this (a drop of a few)
   float birth_steps;       // a pair with a particle this new has no force: its overlap is shifted away ...
+                           // (a film with depth's: the longest a birth lasts) ...
   float birth_speed;       // mm/s: ... at no more than this
   float gravity_x;         // mm/s², along the panel (y points down); on a mesh, the surface's map says
   float gravity_y;
@@ -93,6 +94,16 @@ struct ParticleModel {
 // What collide finds around a particle, for integrate: a neighbour within the range moves faster
 // than the wake speed.
 constexpr std::uint32_t kStirred = 2u;
+// ... and, for a parcel of a film with depth being born, another birth nearer than kBirthsApart.
+constexpr std::uint32_t kCrowded = 4u;
+
+// A parcel of a film with depth is being born while its rest word holds this (docs/particles.md#births-
+// of-a-film-with-depth): rest counts at most a lifetime's steps, below 2³¹, so it never reaches it.
+constexpr std::uint32_t kBeingBorn = 0xffffffffu;
+// ... until no other birth is nearer than this many diameters: the film it joins is then at most
+// 1/0.99² − 1 = 2 % deeper than one layer at the births' spacing. (A whole diameter is reached only
+// in the limit: the shift halves an overlap a step.)
+constexpr float kBirthsApart = 0.99f;
 
 // A slot whose age is at least the lifetime holds no particle; a slot never written holds this.
 constexpr std::uint32_t kNeverUsed = 0xffffffffu;
@@ -128,7 +139,8 @@ struct ParticleArrays {
   std::uint32_t* sorted_slot;
   float* sorted_position;
   float* sorted_velocity;
-  std::uint32_t* sorted_age;
+  std::uint32_t* sorted_birth;  // what collide needs of its birth: its age (the contact's births end by age),
+                                // or its rest word (a film with depth's end by distance: kBeingBorn)
   float* sorted_depth;       // mm: a film with depth's depth at each sorted particle, bin → collide
   // cells + 1 entries: cell c's particles are sorted positions [cell_start[c], cell_start[c + 1]),
   // and cell_start[cells] is the number of living particles.
@@ -211,6 +223,14 @@ BLEEDSIM_HD inline bool is_alive(const ParticleLifetime& l, std::uint32_t age) {
 BLEEDSIM_HD inline bool is_alive(const ParticleModel& m, std::uint32_t age) { return is_alive(m.lifetime, age); }
 BLEEDSIM_HD inline bool is_aspirated(std::uint32_t age) { return (age & kAspirated) != 0 && age != kNeverUsed; }
 
+// Whether the particles are parcels of a film with depth (further down), not discs in contact.
+BLEEDSIM_HD inline bool has_depth(const ParticleModel& m) { return m.pressure > 0.0f; }
+
+// Whether a parcel of a film with depth is still being born, from its rest word (or sorted_birth).
+BLEEDSIM_HD inline bool being_born(const ParticleModel& m, std::uint32_t rest) {
+  return has_depth(m) && rest == kBeingBorn;
+}
+
 // Adds one to a counter that many threads may add to: an integer, so the sum is the same in any order.
 BLEEDSIM_HD inline void count_one(std::uint64_t* counter) {
 #if defined(__CUDA_ARCH__)
@@ -285,7 +305,7 @@ BLEEDSIM_HD inline void emit_particle(const ParticleArgs& a, int t) {
            {m.velocity_x * from.speed_scale + m.velocity_jitter * jitter(2),
             m.velocity_y * from.speed_scale + m.velocity_jitter * jitter(3)});
   a.arrays.age[slot] = 0;
-  a.arrays.rest[slot] = 0;
+  a.arrays.rest[slot] = has_depth(m) ? kBeingBorn : 0u;
   set_pair(a.arrays.anchor, slot, {x, y});
 }
 
@@ -330,11 +350,11 @@ BLEEDSIM_HD inline int nth_live_slot_ascending(const ParticleArgs& a, int n) {
 }
 
 // The sorted copies collide reads, so no thread reads a slot another thread is writing.
-BLEEDSIM_HD inline void gather_sorted(const ParticleArrays& p, int i) {
+BLEEDSIM_HD inline void gather_sorted(const ParticleArrays& p, const ParticleModel& m, int i) {
   const std::uint32_t slot = p.sorted_slot[i];
   set_pair(p.sorted_position, std::size_t(i), pair_at(p.position, slot));
   set_pair(p.sorted_velocity, std::size_t(i), pair_at(p.velocity, slot));
-  p.sorted_age[i] = p.age[slot];
+  p.sorted_birth[i] = has_depth(m) ? p.rest[slot] : p.age[slot];
 }
 
 // ---- collide -----------------------------------------------------------------------------------
@@ -373,8 +393,7 @@ BLEEDSIM_HD inline float cohesion_share(const ParticleModel& m, float r) {
 // each parcel away from each neighbour by g_n·V·|∇W| = pressure·q·(1 − q)³: the pressure's
 // gradient, −g_n·∇h, summed over pairs, which conserves momentum as the contact does. It is
 // bounded (and 0 at q = 0), so parcels may overlap as deep as the film is.
-BLEEDSIM_HD inline bool has_depth(const ParticleModel& m) { return m.pressure > 0.0f; }
-
+//
 // The kernel's slope, |dW/dr|, in units of its largest: q·(1 − q)³ (0 from the kernel's reach on).
 BLEEDSIM_HD inline float kernel_slope(const ParticleModel& m, float r) {
   const float q = r * m.kernel_inverse;
@@ -400,6 +419,7 @@ struct PairSums {
   float depth = 0.0f;          // mm: a film with depth's depth here (bin's) ...
   float cx = 0.0f, cy = 0.0f;  // 1/mm: ... and the gradient of its colour, Σ (V/h_j)·∇W: the edge's
   float hx = 0.0f, hy = 0.0f;  // mm: half of each overlap with a new particle, away from it
+  bool crowded = false;        // a pair still parting overlaps it
   float sx = 0.0f, sy = 0.0f;  // the directions to the neighbours, weighted as the cohesion
   float company = 0.0f;        // the weights
   float fastest_sq = 0.0f;     // (mm/s)²: the fastest neighbour's speed
@@ -410,15 +430,24 @@ struct PairSums {
 // never pulling (a dashpot that pulled separating particles would be a tension the blood does not
 // have); within the range, cohesion pulls. The same arithmetic from either side gives equal and
 // opposite forces, bit for bit.
-// A new particle's pairs (over its first birth_steps steps) grow into their forces in two halves.
-// In the first, a pair has no force: its overlap is undone by moving both particles apart, half of
-// it each, at a limited speed (the shift, applied by integrate_particle), which gives them no
-// velocity. In the second, its force grows from nothing to whole, so the small overlaps left (a new
-// particle resting on others) are taken up slowly, under drag, not released at once. Particles born
-// on top of each other (a burst from one point) so part without being blasted apart.
-BLEEDSIM_HD inline void add_pair(const ParticleModel& m, float dx, float dy, float vx, float vy, std::uint32_t age,
-                                 std::uint32_t slot, float wx, float wy, std::uint32_t other_age, std::uint32_t other,
-                                 PairSums* sums) {
+// A pair with a new particle parts before it pushes (docs/particles.md#soft-births): while it is
+// parting it has no force, and its overlap is undone by moving both particles apart, half of it
+// each, at a limited speed (the shift, applied by integrate_particle), which gives them no velocity.
+// Particles born on top of each other (a burst from one point) so part without being blasted apart.
+// The contact's pairs part over the younger's first half of birth_steps and then grow into their
+// force over the second, so the small overlaps left (a new particle resting on others) are taken
+// up slowly, under drag, not released at once. A film with depth's births end by distance instead
+// (collide_particle): two parcels being born part, two born ones push with their whole force.
+// Returns the share of its force a pair has, or −1 while it parts.
+BLEEDSIM_HD inline float pair_growth(const ParticleModel& m, std::uint32_t birth, std::uint32_t other_birth) {
+  if (has_depth(m)) return being_born(m, birth) ? -1.0f : 1.0f;
+  const float younger = float(birth < other_birth ? birth : other_birth), half_birth = 0.5f * m.birth_steps;
+  if (younger < half_birth) return -1.0f;
+  return min_float(1.0f, (younger - half_birth) / half_birth);
+}
+
+BLEEDSIM_HD inline void add_pair(const ParticleModel& m, float dx, float dy, float vx, float vy, float growth,
+                                 std::uint32_t slot, float wx, float wy, std::uint32_t other, PairSums* sums) {
   const float r2 = dx * dx + dy * dy;
   if (r2 >= m.range_sq) return;
   float nx, ny, r;
@@ -436,11 +465,11 @@ BLEEDSIM_HD inline void add_pair(const ParticleModel& m, float dx, float dy, flo
   sums->sx += share * nx;
   sums->sy += share * ny;
   sums->company += share;
-  const float younger = float(age < other_age ? age : other_age), half_birth = 0.5f * m.birth_steps;
-  if (younger < half_birth) {
+  if (growth < 0.0f) {
     const float half_overlap = 0.5f * max_float(m.diameter_mm - r, 0.0f);
     sums->hx += half_overlap * nx;
     sums->hy += half_overlap * ny;
+    sums->crowded = sums->crowded || r < kBirthsApart * m.diameter_mm;
     return;
   }
   float push = 0.0f;
@@ -450,8 +479,7 @@ BLEEDSIM_HD inline void add_pair(const ParticleModel& m, float dx, float dy, flo
     const float approach = (vx - wx) * nx + (vy - wy) * ny;
     push = max_float(m.stiffness * (m.diameter_mm - r) - m.damping * approach, 0.0f);
   }
-  const float grown = min_float(1.0f, (younger - half_birth) / half_birth);
-  const float force = grown * (push - m.cohesion * share);
+  const float force = growth * (push - m.cohesion * share);
   sums->ax += force * nx;
   sums->ay += force * ny;
 }
@@ -470,12 +498,23 @@ BLEEDSIM_HD inline float grip_from(const ParticleModel& m, const PairSums& sums)
   return on_edge ? m.yield + m.pinning : m.yield;
 }
 
+// A film with depth's births part sideways and downhill, never uphill: blood welling up from a
+// wound runs down the tissue, and what it pressed uphill would be blood the wound never sent there.
+BLEEDSIM_HD inline void drop_uphill(const ParticleModel& m, float* hx, float* hy) {
+  const float along = *hx * m.gravity_x + *hy * m.gravity_y;
+  if (along >= 0.0f) return;
+  const float share = along / (m.gravity_x * m.gravity_x + m.gravity_y * m.gravity_y);
+  *hx -= share * m.gravity_x;
+  *hy -= share * m.gravity_y;
+}
+
 // A particle's acceleration and shift from its pair sums, the shift no longer than birth_speed·dt
 // (so a burst parts at no more than that speed); its grip, and whether a neighbour moves fast
-// enough to wake it.
+// enough to wake it or (a birth) one still being born crowds it.
 BLEEDSIM_HD inline void finish_pair_sums(const ParticleArrays& p, const ParticleModel& m, std::uint32_t slot,
                                          const PairSums& sums) {
   float hx = sums.hx, hy = sums.hy;
+  if (has_depth(m)) drop_uphill(m, &hx, &hy);
   const float most = m.birth_speed * m.dt_s, size_sq = hx * hx + hy * hy;
   if (size_sq > most * most) {
     const float scale = most / sqrtf(size_sq);
@@ -485,7 +524,7 @@ BLEEDSIM_HD inline void finish_pair_sums(const ParticleArrays& p, const Particle
   set_pair(p.acceleration, slot, {sums.ax, sums.ay});
   set_pair(p.shift, slot, {hx, hy});
   p.grip[slot] = grip_from(m, sums);
-  p.neighbourhood[slot] = sums.fastest_sq > m.wake_speed_sq ? kStirred : 0u;
+  p.neighbourhood[slot] = (sums.fastest_sq > m.wake_speed_sq ? kStirred : 0u) | (sums.crowded ? kCrowded : 0u);
 }
 
 // A film with depth meets the panel's edges as its own mirror image (docs/particles.md#walls-of-a-
@@ -592,30 +631,35 @@ BLEEDSIM_HD inline void depth_particle(const ParticleArrays& p, const ParticleMo
 }
 
 // The pair forces on the particle at sorted position i from every neighbour within the range
-// (for_each_neighbour). A neighbour's velocity and age are read only once it is within the range
+// (for_each_neighbour). A neighbour's velocity and birth are read only once it is within the range
 // (about a third of the particles of the 3 × 3 cells are), and its slot only when it coincides
 // with this one (the slot names the pair's direction only then). A film with depth adds its edge's
-// colour and the walls' images.
+// colour and the walls' images. A parcel being born is in the film's depth and pushes the film as
+// any parcel does, but the film does not push it back: it meets only the others being born, and
+// they part (pair_growth). (Left out of the film, a burst was a hole the film around it ran into at
+// twice g/γ; pushed by it, a burst into a pool is blasted as births by age were.)
 BLEEDSIM_HD inline void collide_particle(const ParticleArrays& p, const ParticleModel& m, int i) {
   if (p.sorted_key[i] == sentinel_key(m)) return;
   const std::uint32_t slot = p.sorted_slot[i];
   const FloatPair at = pair_at(p.sorted_position, std::size_t(i));
   const FloatPair own_velocity = pair_at(p.sorted_velocity, std::size_t(i));
   const float px = at.x, py = at.y, vx = own_velocity.x, vy = own_velocity.y;
-  const std::uint32_t age = p.sorted_age[i];
-  const bool deep = has_depth(m);
+  const std::uint32_t birth = p.sorted_birth[i];
+  const bool in_film = has_depth(m) && !being_born(m, birth);
   PairSums sums;
-  if (deep) sums.depth = p.sorted_depth[i];
+  if (has_depth(m)) sums.depth = p.sorted_depth[i];
   for_each_neighbour(p, m, i, [&](std::uint32_t j, float qx, float qy, float dx, float dy, float r2) {
+    const std::uint32_t other_birth = p.sorted_birth[j];
+    if (being_born(m, birth) && !being_born(m, other_birth)) return;
     const std::uint32_t other = r2 > 0.0f ? 0u : p.sorted_slot[j];
     const FloatPair w = pair_at(p.sorted_velocity, j);
-    add_pair(m, dx, dy, vx, vy, age, slot, w.x, w.y, p.sorted_age[j], other, &sums);
-    if (!deep) return;
+    add_pair(m, dx, dy, vx, vy, pair_growth(m, birth, other_birth), slot, w.x, w.y, other, &sums);
+    if (!in_film) return;
     const float other_depth = p.sorted_depth[j];
     if (r2 > 0.0f) add_colour(m, dx, dy, sqrtf(r2), other_depth, &sums);
     add_wall_images(m, px, py, qx, qy, other_depth, &sums);
   });
-  if (deep) add_wall_images(m, px, py, px, py, sums.depth, &sums);
+  if (in_film) add_wall_images(m, px, py, px, py, sums.depth, &sums);
   finish_pair_sums(p, m, slot, sums);
 }
 
@@ -673,7 +717,7 @@ BLEEDSIM_HD inline void wall_damped(const ParticleModel& m, const SurfaceFrame& 
 // seconds after it had stopped. Rest is a distance, not a speed: a pile at rest rings at the
 // contact's frequency with nanometres of amplitude, which a speed test of each step sees.
 BLEEDSIM_HD inline bool asleep(const ParticleModel& m, std::uint32_t rest) {
-  return m.rest_steps > 0 && rest >= m.rest_steps;
+  return m.rest_steps > 0 && rest >= m.rest_steps && !being_born(m, rest);
 }
 
 // The grip as the step takes it is grip·(1 + γ·dt): a particle held by its grip is within it.
@@ -691,6 +735,24 @@ BLEEDSIM_HD inline std::uint32_t rest_after(const ParticleModel& m, std::uint32_
   return rest < m.rest_steps ? rest + 1 : m.rest_steps;
 }
 
+// A parcel of a film with depth being born (docs/particles.md#births-of-a-film-with-depth) moves by
+// its shift alone, inside the panel. It keeps the velocity it was emitted with for when it joins
+// the film, slowed by the drag as a lone particle's would be (a burst's jitter is spent while it
+// parts, a jet's kept by a birth of one step): once no other birth is nearer than kBirthsApart,
+// or at birth_steps all the same (a birth that has found no room by then joins where it is). It joins
+// where it stands, its rest beginning there.
+BLEEDSIM_HD inline void step_birth(const ParticleArrays& p, const ParticleModel& m, int slot, std::uint32_t age) {
+  const FloatPair at = pair_at(p.position, std::size_t(slot)), shift = pair_at(p.shift, std::size_t(slot));
+  const float x = clamp_float(at.x + shift.x, m.min_x, m.max_x), y = clamp_float(at.y + shift.y, m.min_y, m.max_y);
+  const FloatPair v = pair_at(p.velocity, std::size_t(slot));
+  set_pair(p.position, std::size_t(slot), {x, y});
+  set_pair(p.velocity, std::size_t(slot), {v.x / m.drag_divisor, v.y / m.drag_divisor});
+  p.age[slot] = age + 1;
+  const bool crowded = (p.neighbourhood[slot] & kCrowded) != 0u && float(age + 1) < m.birth_steps;
+  p.rest[slot] = crowded ? kBeingBorn : 0u;
+  if (!crowded) set_pair(p.anchor, std::size_t(slot), {x, y});
+}
+
 // Semi-implicit Euler: the new velocity from gravity, contacts and the walls, drag and the walls'
 // dashpots taken implicitly;
 // then the grip as friction taken implicitly (Coulomb): it removes up to grip·dt of the speed, and
@@ -705,6 +767,10 @@ BLEEDSIM_HD inline void integrate_particle(const ParticleArrays& p, const Partic
   const std::uint32_t age = p.age[slot];
   if (!is_alive(m, age)) {
     age_aspirated(p, m, slot);
+    return;
+  }
+  if (being_born(m, p.rest[slot])) {
+    step_birth(p, m, slot, age);
     return;
   }
   const auto [x0, y0] = pair_at(p.position, std::size_t(slot));

@@ -133,10 +133,10 @@ TEST(FilmDepth, APushIsTheHydrostaticPressuresGradient) {
 // Momentum: a pair's pushes are equal and opposite, bit for bit, as the contact's are.
 TEST(FilmDepth, APairPushesEquallyAndOppositely) {
   const ParticleModel m = resolve_particles(test::box_scene(kWidth, kHeight, pool_params(0.2))).model;
-  const std::uint32_t born = std::uint32_t(m.birth_steps);
+  const std::uint32_t born = 0u;  // a film with depth's birth is its rest word: 0 is in the film
   PairSums one, other;
-  add_pair(m, 0.13f, -0.21f, 0.0f, 0.0f, born, 1, 0.0f, 0.0f, born, 2, &one);
-  add_pair(m, -0.13f, 0.21f, 0.0f, 0.0f, born, 2, 0.0f, 0.0f, born, 1, &other);
+  add_pair(m, 0.13f, -0.21f, 0.0f, 0.0f, pair_growth(m, born, born), 1, 0.0f, 0.0f, 2, &one);
+  add_pair(m, -0.13f, 0.21f, 0.0f, 0.0f, pair_growth(m, born, born), 2, 0.0f, 0.0f, 1, &other);
   EXPECT_GT(std::hypot(one.ax, one.ay), 0.0);
   EXPECT_EQ(one.ax, -other.ax);
   EXPECT_EQ(one.ay, -other.ay);

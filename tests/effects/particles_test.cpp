@@ -259,7 +259,7 @@ struct Pull {
 Pull force_on(const ParticleModel& m, float px, float py, float vx, float vy, std::uint32_t slot, float qx, float qy,
               float wx, float wy, std::uint32_t other, std::uint32_t age = 1000000, std::uint32_t other_age = 1000000) {
   PairSums sums;
-  add_pair(m, px - qx, py - qy, vx, vy, age, slot, wx, wy, other_age, other, &sums);
+  add_pair(m, px - qx, py - qy, vx, vy, pair_growth(m, age, other_age), slot, wx, wy, other, &sums);
   return {sums.ax, sums.ay, sums.company};
 }
 
@@ -302,8 +302,8 @@ TEST(ParticlePair, ANewParticlesOverlapsAreShiftedAwayNotPushed) {
   // Overlapping by 0.1 mm along x: a full-grown pair pushes; one with a new particle does not, and
   // is shifted apart by half the overlap each instead.
   PairSums grown, newborn;
-  add_pair(m, 1.0f - 1.1f, 0.0f, 0.0f, 0.0f, 1000000, 0, 0.0f, 0.0f, 1000000, 1, &grown);
-  add_pair(m, 1.0f - 1.1f, 0.0f, 0.0f, 0.0f, 3, 0, 0.0f, 0.0f, 1000000, 1, &newborn);
+  add_pair(m, 1.0f - 1.1f, 0.0f, 0.0f, 0.0f, pair_growth(m, 1000000, 1000000), 0, 0.0f, 0.0f, 1, &grown);
+  add_pair(m, 1.0f - 1.1f, 0.0f, 0.0f, 0.0f, pair_growth(m, 3, 1000000), 0, 0.0f, 0.0f, 1, &newborn);
   EXPECT_LT(grown.ax, 0.0f);
   EXPECT_EQ(grown.hx, 0.0f);
   EXPECT_EQ(newborn.ax, 0.0f);
@@ -312,7 +312,7 @@ TEST(ParticlePair, ANewParticlesOverlapsAreShiftedAwayNotPushed) {
   // In the second half of its birth, the force grows from nothing to whole.
   const std::uint32_t three_quarters = std::uint32_t(0.75f * m.birth_steps);
   PairSums growing;
-  add_pair(m, 1.0f - 1.1f, 0.0f, 0.0f, 0.0f, three_quarters, 0, 0.0f, 0.0f, 1000000, 1, &growing);
+  add_pair(m, 1.0f - 1.1f, 0.0f, 0.0f, 0.0f, pair_growth(m, three_quarters, 1000000), 0, 0.0f, 0.0f, 1, &growing);
   EXPECT_EQ(growing.hx, 0.0f);
   EXPECT_NEAR(growing.ax, grown.ax * (float(three_quarters) - 0.5f * m.birth_steps) / (0.5f * m.birth_steps),
               1e-5f * std::abs(grown.ax));
@@ -338,7 +338,7 @@ TEST(ParticlePair, ACoincidentClusterSpreadsOut) {
     for (std::uint32_t i = 0; i < size; ++i) {
       PairSums sums;
       for (std::uint32_t j = 0; j < size; ++j)
-        if (j != i) add_pair(m, 0.0f, 0.0f, 0.0f, 0.0f, 0, i, 0.0f, 0.0f, 0, j, &sums);
+        if (j != i) add_pair(m, 0.0f, 0.0f, 0.0f, 0.0f, pair_growth(m, 0, 0), i, 0.0f, 0.0f, j, &sums);
       // Each pair gives d/2 along a unit direction; the pairs do not cancel to less than one
       // pair's worth, so the particle moves at the birth shift's full rate.
       EXPECT_GT(std::hypot(sums.hx, sums.hy), 0.5 * m.diameter_mm) << size << " " << i;

@@ -9,7 +9,7 @@ namespace {
 // Offsets of the scratch arrays, one after another, each aligned for vector loads.
 struct ScratchLayout {
   std::size_t acceleration, shift, grip, neighbourhood, cell_key, sorted_key, sorted_slot, sorted_position,
-      sorted_velocity, sorted_age, sorted_depth, cell_start, fates, sort_scratch, total;
+      sorted_velocity, sorted_birth, sorted_depth, cell_start, fates, sort_scratch, total;
 
   ScratchLayout(std::size_t cells, int capacity, std::size_t sort_scratch_bytes) {
     const std::size_t n = std::size_t(capacity);
@@ -28,7 +28,7 @@ struct ScratchLayout {
     sorted_slot = take(n * sizeof(std::uint32_t));
     sorted_position = take(2 * n * sizeof(float));
     sorted_velocity = take(2 * n * sizeof(float));
-    sorted_age = take(n * sizeof(std::uint32_t));
+    sorted_birth = take(n * sizeof(std::uint32_t));
     sorted_depth = take(n * sizeof(float));
     cell_start = take((cells + 1) * sizeof(std::uint32_t));
     fates = take(sizeof(AspiratedFates));
@@ -59,7 +59,7 @@ void point_particle_scratch(ParticleArrays& a, std::size_t cells, void* base, st
   a.sorted_slot = at_offset<std::uint32_t>(base, layout.sorted_slot);
   a.sorted_position = at_offset<float>(base, layout.sorted_position);
   a.sorted_velocity = at_offset<float>(base, layout.sorted_velocity);
-  a.sorted_age = at_offset<std::uint32_t>(base, layout.sorted_age);
+  a.sorted_birth = at_offset<std::uint32_t>(base, layout.sorted_birth);
   a.sorted_depth = at_offset<float>(base, layout.sorted_depth);
   a.cell_start = at_offset<std::uint32_t>(base, layout.cell_start);
   a.fates = at_offset<AspiratedFates>(base, layout.fates);

@@ -17,10 +17,12 @@ std::string number(double v) { return format_significant(v, 4); }
 // ---- what a file leaves out -------------------------------------------------------------------
 
 // A fade not given is the default's, or the whole lifetime when that is shorter. A film with depth
-// has no cohesion unless the file gives one (which a rule then refuses).
+// has no cohesion unless the file gives one (which a rule then refuses), and its births end by
+// distance, birth_s only bounding them: long enough for a burst of 12,000 to part at g/γ.
 ParamProblem resolve_file(P& p, const Written& written, const Scene&) {
   if (!written.has("fade_s")) p.fade_s = std::min(P{}.fade_s, p.lifetime_s);
   if (p.film_depth && !written.has("cohesion_mm3_s2")) p.cohesion_mm3_s2 = 0.0;
+  if (p.film_depth && !written.has("birth_s")) p.birth_s = kLongestFilmBirthS;
   return {};
 }
 
@@ -144,7 +146,8 @@ const ParamTable<ParticleParams>& particle_table() {
         "blood's yield stress per unit density: the grip on every particle"},
        {"birth_s", T::number, BLEEDSIM_MEMBER(P, birth_s), "s", {0, 10},
         "over this a new particle's overlaps are undone by moving it, at no more than gravity / drag, not by "
-        "pushing it: a burst parts without a blast"},
+        "pushing it: a burst parts without a blast (with film_depth: the longest a birth lasts, 3 s unless given; "
+        "it ends once no other birth is within a diameter)"},
        {"max_speed_mm_s", T::number, BLEEDSIM_MEMBER(P, max_speed_mm_s), "mm/s", {0, 1e5, true},
         "speed limit: no particle moves faster; with the sub-step, less than half a diameter a step"},
        {"rest_speed_mm_s", T::number, BLEEDSIM_MEMBER(P, rest_speed_mm_s), "mm/s", {0, 1e5},

@@ -11,6 +11,11 @@ struct Effect;
 // The most particles a cut may emit per second: keeps one step's count well inside 32 bits.
 constexpr double kMaxParticleRate = 1.0e8;
 
+// The longest a film with depth's birth lasts unless the scene says (docs/particles.md#births-of-a-
+// film-with-depth): 12,000 parcels born at one point part into a fan 16 mm across at g/γ = 10 mm/s
+// in about 1.6 s.
+constexpr double kLongestFilmBirthS = 3.0;
+
 // Present in a Scene only when the scene calls for the particles.
 struct ParticleParams {
   int capacity = 16384;              // ring-buffer slots
@@ -47,6 +52,7 @@ struct ParticleParams {
   double pinning_mm3_s2 = 30.0;
   double yield_mm2_s2 = 50.0;         // the film's yield stress per unit density (mm²/s²)
   double birth_s = 0.1;              // a new particle is shifted out of overlaps, not pushed, over this
+                                     // (film_depth: at most this, kLongestFilmBirthS unless given)
   double max_speed_mm_s = 100.0;     // no particle moves faster
   // Rest: blood that moves less than rest_speed_mm_s × rest_s in rest_s has stopped, and sleeps until
   // a neighbour moves at twice that speed, or the tip, a new particle or a force past twice its grip
