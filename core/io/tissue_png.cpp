@@ -161,7 +161,14 @@ void check_chunks(const unsigned char* bytes, std::size_t size, const TextureHea
   bool inflating = false, stream_checked = false;
   std::uint64_t inflated = 0;
   unsigned char scratch[1 << 14];
-  for (std::size_t at = sizeof kSignature; at + 12 <= size;) {
+  for (std::size_t at = sizeof kSignature; at < size;) {
+    // stb reads a chunk's length from a file's last few bytes too (a 43-byte file whose last 10
+    // bytes claimed a 1 GiB IDAT made it ask for 1 GiB; fuzz/tissue_png_fuzzer).
+    if (size - at < 12) {
+      if (inflating) inflateEnd(&inflater);
+      throw undecodable(file, "it ends inside a chunk: " + std::to_string(size - at) +
+                                  " bytes are left, less than a chunk's length, type and CRC");
+    }
     const std::uint32_t length = big_endian(bytes + at);
     const std::string type(reinterpret_cast<const char*>(bytes + at + 4), 4);
     if (length > size - at - 12) {

@@ -292,7 +292,8 @@ std::string chunk(const std::string& type, const std::string& data) {
 }
 
 // stb trusted a PNG past its header: it allocated an IDAT chunk's stated length before reading it (a
-// 426-byte file made it ask for 2 GiB; fuzz/tissue_png_fuzzer), and inflates image data for as
+// 426-byte file made it ask for 2 GiB, a 43-byte file cut inside a chunk's header 1 GiB;
+// fuzz/tissue_png_fuzzer), and inflates image data for as
 // long as the stream goes on. Both are refused before stb sees the file.
 TEST_F(LoadTissuePng, RefusesChunksAndImageDataPastWhatTheHeaderStates) {
   const std::string ihdr = png_header(1, 1).substr(8, 21);  // length, type and data of a 1 x 1 RGBA IHDR
@@ -304,6 +305,14 @@ TEST_F(LoadTissuePng, RefusesChunksAndImageDataPastWhatTheHeaderStates) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("a chunk claims 2147483647 bytes, more than the file holds"),
               std::string::npos) << e.what();
+  }
+  // A chunk's header that the file cuts short, its length claiming 1 GiB.
+  const std::string cut = start + std::string("\x40\x00\x00\x1aIDATxN", 10);
+  try {
+    decode_tissue_png(cut, texture("cut.png"), 2, 2);
+    FAIL() << "a file ending inside a chunk's header was accepted";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("it ends inside a chunk: 10 bytes are left"), std::string::npos) << e.what();
   }
   // 10 MB of zeros compress to ~10 KB; a 1 x 1 image holds 5 bytes of rows.
   const std::string zeros(10 << 20, '\0');
