@@ -27,7 +27,7 @@
 
 #include "core/physics/blur.h"
 #include "core/physics/hd.h"
-#include "core/physics/particles.h"
+#include "core/physics/particle_state.h"
 #include "core/physics/pixel_grid.h"
 #include "core/physics/surface.h"
 

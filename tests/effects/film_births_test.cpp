@@ -1,7 +1,8 @@
 // A film with depth's births end by distance (docs/particles.md#births-of-a-film-with-depth): a
 // burst of parcels born at one point parts at no more than g/γ, never uphill, and joins the film
-// once no other birth is within 0.99 of a diameter. Issue 36's bounds for such a burst, with the
-// model's defaults, are checked at every frame:
+// once no other birth is nearer than 0.99 of a diameter. The bounds are issue 36's acceptance bounds
+// for such a burst with the model's defaults, not derived here; each note says why the model should
+// meet its bound. They are checked at every frame:
 //   * no parcel faster than 2·g/γ: a birth moves by its shift, at no more than g/γ, and keeps no
 //     velocity of its own beyond the emission's; a parcel that has joined slides at g/γ, and the
 //     film the burst leaves, one layer at the births' spacing, may add at most as much again by

@@ -18,7 +18,7 @@ std::string number(double v) { return format_significant(v, 4); }
 
 // A fade not given is the default's, or the whole lifetime when that is shorter. A film with depth
 // has no cohesion unless the file gives one (which a rule then refuses), and its births end by
-// distance, birth_s only bounding them: long enough for a burst of 12,000 to part at g/γ.
+// distance, birth_s only bounding them (kLongestFilmBirthS).
 ParamProblem resolve_file(P& p, const Written& written, const Scene&) {
   if (!written.has("fade_s")) p.fade_s = std::min(P{}.fade_s, p.lifetime_s);
   if (p.film_depth && !written.has("cohesion_mm3_s2")) p.cohesion_mm3_s2 = 0.0;
@@ -95,6 +95,11 @@ ParamProblem deposit_fits(const P& p, const Scene& scene) {
 
 const ParamTable<ParticleParams>& particle_table() {
   using T = ParamType;
+  static const std::string birth_doc =
+      "over this a new particle's overlaps are undone by moving it, at no more than gravity / drag, not by pushing "
+      "it: a burst parts without a blast (with film_depth: the longest a birth lasts, " +
+      number(kLongestFilmBirthS) + " s unless given; it ends once no other birth is nearer than " +
+      number(kBirthsApart) + " of a diameter)";
   static const ParamTable<P> table{
       "particles",
       "declares the particle blood flow from the cuts, its model, and the wound's defaults for cuts that give none",
@@ -145,9 +150,7 @@ const ParamTable<ParticleParams>& particle_table() {
        {"yield_mm2_s2", T::number, BLEEDSIM_MEMBER(P, yield_mm2_s2), "mm²/s²", {0, 1e6},
         "blood's yield stress per unit density: the grip on every particle"},
        {"birth_s", T::number, BLEEDSIM_MEMBER(P, birth_s), "s", {0, 10},
-        "over this a new particle's overlaps are undone by moving it, at no more than gravity / drag, not by "
-        "pushing it: a burst parts without a blast (with film_depth: the longest a birth lasts, 3 s unless given; "
-        "it ends once no other birth is within a diameter)"},
+        birth_doc.c_str()},
        {"max_speed_mm_s", T::number, BLEEDSIM_MEMBER(P, max_speed_mm_s), "mm/s", {0, 1e5, true},
         "speed limit: no particle moves faster; with the sub-step, less than half a diameter a step"},
        {"rest_speed_mm_s", T::number, BLEEDSIM_MEMBER(P, rest_speed_mm_s), "mm/s", {0, 1e5},
