@@ -91,11 +91,18 @@ struct PairSums {
 // The contact's pairs part over the younger's first half of birth_steps and then grow into their
 // force over the second, so the small overlaps left (a new particle resting on others) are taken
 // up slowly, under drag, not released at once. A film with depth's births end by distance instead
-// (collide_particle): two parcels being born part, two born ones push with their whole force.
+// (collide_particle): two parcels being born part, two born ones push with their whole force, and a
+// pair with a parcel joining after a crowded birth with the share the one that joined last has grown.
 // Returns the share of its force a pair has, or kParting while it parts.
 constexpr float kParting = -1.0f;
+BLEEDSIM_HD inline float joined_share(const ParticleModel& m, std::uint32_t rest) {
+  return joining(m, rest) ? min_float(1.0f, float(rest - kJoining) / m.join_steps) : 1.0f;
+}
 BLEEDSIM_HD inline float pair_growth(const ParticleModel& m, std::uint32_t birth, std::uint32_t other_birth) {
-  if (has_depth(m)) return being_born(m, birth) ? kParting : 1.0f;
+  if (has_depth(m)) {
+    if (being_born(m, birth)) return kParting;
+    return min_float(joined_share(m, birth), joined_share(m, other_birth));
+  }
   const float younger = float(birth < other_birth ? birth : other_birth), half_birth = 0.5f * m.birth_steps;
   if (younger < half_birth) return kParting;
   return min_float(1.0f, (younger - half_birth) / half_birth);

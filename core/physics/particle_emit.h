@@ -31,7 +31,11 @@ BLEEDSIM_HD inline const Emitter& emitter_of(const ParticleArgs& a, std::uint32_
   return a.emitters[low];
 }
 
-// New particle t of this step: at its cut, jittered by the counter hash of (seed, id, step).
+// New particle t of this step: at its cut, jittered by the counter hash of (seed, id, step). A film
+// with depth's parcels are placed over the jitter's square by the R2 sequence instead: births that
+// land within a diameter of each other must part before they join (particle_integrate.h's
+// step_birth), and independent draws put some that close at any rate, so that at small sizes,
+// several births a step, they crowded at the wound; consecutive R2 points keep apart.
 BLEEDSIM_HD inline void emit_particle(const ParticleArgs& a, int t) {
   const ParticleModel& m = a.model;
   const Emitter& from = emitter_of(a, std::uint32_t(t));
@@ -45,7 +49,10 @@ BLEEDSIM_HD inline void emit_particle(const ParticleArgs& a, int t) {
   const auto jitter = [&](std::uint32_t stream) {
     return signed_unit(counter_hash(m.seed, id, a.step, stream));
   };
-  float jx = m.jitter_mm * jitter(0), jy = m.jitter_mm * jitter(1);
+  const auto place = [&](std::uint32_t axis) {
+    return has_depth(m) ? signed_unit(even_point(m.seed, id, axis)) : jitter(axis);
+  };
+  float jx = m.jitter_mm * place(0), jy = m.jitter_mm * place(1);
   // On a mesh the jitter is on the surface; one that lands off it falls back to the cut.
   if (curved(m.surface)) to_panel(frame_at(m.surface, from.x_mm, from.y_mm), jx, jy, &jx, &jy);
   float x = reflect_inside(from.x_mm + jx, m.min_x, m.max_x), y = reflect_inside(from.y_mm + jy, m.min_y, m.max_y);

@@ -64,7 +64,7 @@ BLEEDSIM_HD inline void wall_damped(const ParticleModel& m, const SurfaceFrame& 
 // seconds after it had stopped. Rest is a distance, not a speed: a pile at rest rings at the
 // contact's frequency with nanometres of amplitude, which a speed test of each step sees.
 BLEEDSIM_HD inline bool asleep(const ParticleModel& m, std::uint32_t rest) {
-  return m.rest_steps > 0 && rest >= m.rest_steps && !being_born(m, rest);
+  return m.rest_steps > 0 && rest >= m.rest_steps && !being_born(m, rest) && !joining(m, rest);
 }
 
 // The grip as the step takes it is grip·(1 + γ·dt): a particle held by its grip is within it.
@@ -77,7 +77,9 @@ BLEEDSIM_HD inline bool stays_asleep(const ParticleModel& m, float fx, float fy,
 
 // Steps at rest in a row after a step that ended `moved` from the anchor: counted up to
 // rest_steps, or 0 when it has left the anchor (which then moves to where it is).
+// A parcel joining the film counts its steps since instead, and begins its rest once it has joined.
 BLEEDSIM_HD inline std::uint32_t rest_after(const ParticleModel& m, std::uint32_t rest, FloatPair moved) {
+  if (joining(m, rest)) return float(rest + 1u - kJoining) >= m.join_steps ? 0u : rest + 1u;
   if (moved.x * moved.x + moved.y * moved.y > m.rest_distance_sq) return 0;
   return rest < m.rest_steps ? rest + 1 : m.rest_steps;
 }
@@ -85,9 +87,8 @@ BLEEDSIM_HD inline std::uint32_t rest_after(const ParticleModel& m, std::uint32_
 // A parcel of a film with depth being born (docs/particles.md#births-of-a-film-with-depth) moves by
 // its shift alone, inside the panel. It keeps the velocity it was emitted with for when it joins
 // the film, slowed by the drag as a lone particle's would be (a burst's jitter is spent while it
-// parts, a jet's kept by a birth of one step): once no other birth is nearer than kBirthsApart,
-// or at birth_steps all the same (a birth that has found no room by then joins where it is). It joins
-// where it stands, its rest beginning there.
+// parts, a jet's kept by a birth of one step): once no other birth is nearer than kBirthsApart, its
+// rest beginning where it stands; or, at birth_steps all the same, joining (kJoining) where it is.
 BLEEDSIM_HD inline void step_birth(const ParticleArrays& p, const ParticleModel& m, int slot, std::uint32_t age) {
   const FloatPair at = pair_at(p.position, std::size_t(slot)), shift = pair_at(p.shift, std::size_t(slot));
   const float x = clamp_float(at.x + shift.x, m.min_x, m.max_x), y = clamp_float(at.y + shift.y, m.min_y, m.max_y);
@@ -95,8 +96,8 @@ BLEEDSIM_HD inline void step_birth(const ParticleArrays& p, const ParticleModel&
   set_pair(p.position, std::size_t(slot), {x, y});
   set_pair(p.velocity, std::size_t(slot), {v.x / m.drag_divisor, v.y / m.drag_divisor});
   p.age[slot] = age + 1;
-  const bool crowded = (p.neighbourhood[slot] & kCrowded) != 0u && float(age + 1) < m.birth_steps;
-  p.rest[slot] = crowded ? kBeingBorn : 0u;
+  const bool crowded = (p.neighbourhood[slot] & kCrowded) != 0u;
+  p.rest[slot] = !crowded ? 0u : float(age + 1) < m.birth_steps ? kBeingBorn : kJoining;
   if (!crowded) set_pair(p.anchor, std::size_t(slot), {x, y});
 }
 

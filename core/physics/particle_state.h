@@ -44,6 +44,7 @@ struct ParticleModel {
   float birth_steps;       // a pair with a particle this new has no force: its overlap is shifted away ...
                            // (a film with depth's: the longest a birth lasts) ...
   float birth_speed;       // mm/s: ... at no more than this
+  float join_steps;        // a film with depth's birth that ran out crowded grows into its push over these
   float gravity_x;         // mm/s², along the panel (y points down); on a mesh, the surface's map says
   float gravity_y;
   float dt_s;              // one sub-step
@@ -83,6 +84,10 @@ constexpr std::uint32_t kBeingBorn = 0xffffffffu;
 // 1/0.99² − 1 = 2 % deeper than one layer at the births' spacing. (A whole diameter is reached only
 // in the limit: the shift halves an overlap a step.)
 constexpr float kBirthsApart = 0.99f;
+// ... or, crowded still when birth_steps run out, joins gradually: its rest word then counts the steps
+// since from this up, and its pairs grow into their push over join_steps, so that a crowd that found
+// no room (a burst of 12,000) is not released at once into the push of a film many layers deep.
+constexpr std::uint32_t kJoining = 0x80000000u;
 
 // A slot whose age is at least the lifetime holds no particle; a slot never written holds this.
 constexpr std::uint32_t kNeverUsed = 0xffffffffu;
@@ -206,9 +211,14 @@ BLEEDSIM_HD inline bool is_aspirated(std::uint32_t age) { return (age & kAspirat
 // discs in contact.
 BLEEDSIM_HD inline bool has_depth(const ParticleModel& m) { return m.pressure > 0.0f; }
 
-// Whether a parcel of a film with depth is still being born, from its rest word (or sorted_birth).
+// Whether a parcel of a film with depth is still being born, from its rest word (or sorted_birth) ...
 BLEEDSIM_HD inline bool being_born(const ParticleModel& m, std::uint32_t rest) {
   return has_depth(m) && rest == kBeingBorn;
+}
+
+// ... or joining the film after its birth ran out crowded.
+BLEEDSIM_HD inline bool joining(const ParticleModel& m, std::uint32_t rest) {
+  return has_depth(m) && rest >= kJoining && rest != kBeingBorn;
 }
 
 // Adds one to a counter that many threads may add to: an integer, so the sum is the same in any order.

@@ -263,6 +263,7 @@ ParticleSettings resolve_particles(const ParticleParams& p, const Scene& scene) 
   m.birth_steps = float(steps_in(p.birth_s, 1.0 / dt));
   // New particles part at the speed a lone particle falls at: no faster than blood runs.
   m.birth_speed = float(std::hypot(p.gravity_x_mm_s2, p.gravity_y_mm_s2) / std::max(p.drag_per_s, 1.0));
+  m.join_steps = float(steps_in(kFilmJoinS, 1.0 / dt));
   m.gravity_x = float(p.gravity_x_mm_s2);
   m.gravity_y = float(p.gravity_y_mm_s2);
   m.dt_s = float(dt);

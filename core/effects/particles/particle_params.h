@@ -13,9 +13,13 @@ constexpr double kMaxParticleRate = 1.0e8;
 
 // The longest a film with depth's birth lasts unless the scene says (docs/particles.md#births-of-a-
 // film-with-depth). Births end by distance; this bounds the ones that cannot part soon. 1,200
-// parcels born at one point part by distance in 1.2 s; 12,000 do not part by 3 s, and join then,
-// still crowded, spreading within issue 36's bounds (fastest 18 mm/s, against 2·g/γ = 20).
+// parcels born at one point part by distance in 1.2 s; 12,000 do not part by 3 s, and join over
+// kFilmJoinS then, spreading within issue 36's bounds (fastest 15 mm/s, against 2·g/γ = 20).
 constexpr double kLongestFilmBirthS = 3.0;
+// A birth that is still crowded when birth_s runs out joins the film over this (kJoining,
+// core/physics/particle_state.h): long against the time a film one layer deep takes to level a
+// bump a kernel wide, γR²/(g_n·h) = 0.02 s at the shipped size (less at every smaller one).
+constexpr double kFilmJoinS = 0.25;
 
 // Present in a Scene only when the scene calls for the particles.
 struct ParticleParams {

@@ -314,7 +314,9 @@ const Effect<ParticleParams>& particle_effect() {
                         "the lifetime (an aspirated particle's age has its top bit, 2^31, set)"),
           element_field("particles/rest", ElementType::u32, 1, true, "steps",
                         "steps each slot's particle has been at rest in a row, up to the model's rest steps, "
-                        "where it sleeps (docs/particles.md#rest)"),
+                        "where it sleeps (docs/particles.md#rest); with film_depth, 2^32 - 1 while it is being "
+                        "born, and 2^31 + the steps since while it joins the film after a birth that ran out "
+                        "crowded"),
           element_field("particles/anchor", ElementType::f32, 2, true, "mm",
                         "where each slot's particle began its rest: it is at rest while it stays close to it"),
           element_field("particles/accounting", ElementType::u64, 1, false, "particles",
