@@ -68,6 +68,8 @@ def particle_settings(scenario):
         "fade": min(lifetime, steps_in(p["fade_s"], steps_per_s)),
         "rest_steps": rest_steps,
         "rest_distance": p["rest_speed_mm_s"] * p["rest_s"],
+        "film_depth": p.get("film_depth", False),
+        "join_steps": steps_in(0.25, steps_per_s),   # kFilmJoinS, core/effects/particles/particle_params.h
         "cuts": scenario["cut"],   # each with its vessel density (golden_bleeding.with_vessels)
         "pulse": scenario.get("pulse"),
     }
