@@ -53,9 +53,9 @@ rounding:
   the stain with distances on the surface; the particles on the surface, and the film by its reach
   and its volume on the surface (golden_mesh.py says what it leaves to the C++ tests).
 
-The particles' checks (accounting, live slots, film, blur) live in golden_film.py beside this file,
-the haptics' in golden_haptics.py, the mesh's in golden_mesh.py, the vessels', pulse's and
-instrument's in golden_bleeding.py.
+The particles' checks (accounting, live slots, film) live in golden_film.py beside this file, the
+blur's in golden_blur.py, the haptics' in golden_haptics.py, the mesh's in golden_mesh.py, the
+vessels', pulse's and instrument's in golden_bleeding.py.
 
 Run: /usr/bin/python3 tests/golden/check_goldens.py [repo root] [--golden-dir DIR]
 (DIR defaults to <repo root>/golden; the scenarios are always <repo root>/scenarios/golden.)
@@ -70,7 +70,8 @@ import numpy as np
 
 from golden_bleeding import (check_contact, describe_wounds, suction_quota, suction_reach, sucking, vessel_map,
                              with_vessels)
-from golden_film import check_blur, check_particles, particle_settings, pixel_centres
+from golden_blur import check_blur
+from golden_film import check_particles, particle_settings, pixel_centres
 from golden_haptics import check_haptics
 from golden_mesh import check_maps, device_gravity, read_mesh, surface_maps
 from scenario_defaults import defaults, fill_cut, load_params, read_scenario
