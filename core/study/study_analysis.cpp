@@ -197,14 +197,14 @@ SettingResult setting_result(const Study& study, const Runs& runs, std::size_t i
   const std::size_t m_count = metrics().size();
   out.value.assign(m_count, {});
   out.distance.assign(m_count, {});
+  out.per_seed.assign(m_count, {});
   out.curves.assign(m_count, {});
   if (out.status != "ok") return out;
   for (std::size_t m = 0; m < m_count; ++m) {
     const SeedValues x = runs.values(i, metrics()[m].metric);
     if (x.empty() || reference[m].empty()) continue;
-    std::vector<double> means;
-    for (const std::vector<double>& seed : x) means.push_back(mean_of(seed));
-    out.value[m] = mean_ci(means);
+    for (const std::vector<double>& seed : x) out.per_seed[m].push_back(mean_of(seed));
+    out.value[m] = mean_ci(out.per_seed[m]);
     out.distance[m] = ensemble_distance(x, reference[m]);
     std::vector<const std::vector<double>*> frames;
     for (int s = 0; s < study.seeds(); ++s)

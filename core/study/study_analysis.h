@@ -47,6 +47,10 @@ struct SettingResult {
   // reference's, the seeds' noise taken out.
   std::vector<Estimate> value;
   std::vector<Distance> distance;
+  // Per metric, each seed's value (its mean over the components) in seed order, whose mean is
+  // `value`; empty where the metric is absent or the setting did not run. The worst seed, which the
+  // mean hides, matters too: issue 36 asks that every seed come to rest in time.
+  std::vector<std::vector<double>> per_seed;
   // Each seed's run against the reference's run of the same seed, mean and interval over the seeds.
   RunDistances against_reference;
   // Every frame of the curves (front, covered area, volume, pile height) and the pile's profile at

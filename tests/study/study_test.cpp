@@ -1,10 +1,12 @@
 // The accuracy study (core/study/study.cpp, study_analysis.cpp): its settings and ladders, its
 // seeds, its jobs (independent of one another and of their order), the analysis' determinism and
-// its refusal of records that do not fit, and bad input refused before anything runs.
+// its refusal of records that do not fit, each seed's own value in the results and the files, and
+// bad input refused before anything runs.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -20,8 +22,10 @@
 #include "core/study/job_record.h"
 #include "core/study/study.h"
 #include "core/study/study_analysis.h"
+#include "core/study/study_metrics.h"
 #include "core/study/study_output.h"
 #include "core/simulation/simulation.h"
+#include "tests/cli/study_files.h"
 #include "tests/effects/hard_case_check.h"
 #include "tests/runtime/scenes_in_code.h"
 #include "tests/test_paths.h"
@@ -179,6 +183,12 @@ std::vector<std::vector<std::uint8_t>> records_in(const Study& study, std::vecto
   return records;
 }
 
+std::size_t metric_named(const std::string& name) {
+  std::size_t m = 0;
+  while (metrics()[m].name != name) ++m;
+  return m;
+}
+
 std::string file_text(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   std::stringstream text;
@@ -235,8 +245,7 @@ TEST(StudyRest, IsTheEndOfTheLastFrameInWhichALiveParticleMovedFasterThanTheRest
   scene.duration_s = 1.0;
   const Study study(scene, spec_of({}, 2));
   const StudyResult result = analyse(study, run_all_jobs(study));
-  std::size_t rest = 0;
-  while (std::string(metrics()[rest].name) != "rest_s") ++rest;
+  const std::size_t rest = metric_named("rest_s");
   std::vector<double> direct;
   for (int seed = 0; seed < 2; ++seed) {
     const Scene run = study.scene_for(0, seed);
@@ -255,6 +264,90 @@ TEST(StudyRest, IsTheEndOfTheLastFrameInWhichALiveParticleMovedFasterThanTheRest
   EXPECT_GT(std::min(direct[0], direct[1]), 0.0) << "the blood never moved: the test says nothing";
   EXPECT_LT(std::max(direct[0], direct[1]), scene.duration_s) << "the blood never rested: the test says nothing";
   EXPECT_NEAR(result.settings[0].value[rest].value, 0.5 * (direct[0] + direct[1]), 1e-12);
+  ASSERT_EQ(result.settings[0].per_seed[rest].size(), 2u);
+  for (int seed = 0; seed < 2; ++seed)
+    EXPECT_NEAR(result.settings[0].per_seed[rest][seed], direct[seed], 1e-12) << "seed " << seed;
+}
+
+// A study of three settings and three seeds whose records are made to rest at different times
+// (0.1 s runs never rest): seed s's fastest particle moves in frames 0 to s only, so its rest time
+// is s + 1 frames, and a list of the seeds in any other order, or their mean, is told apart.
+struct SeedsRestingApart {
+  Study study{small_scene(), spec_of({{find_knob("resolution"), {1}}})};
+  std::vector<std::vector<std::uint8_t>> records = resting_apart(run_all_jobs(study));
+
+  static std::vector<std::vector<std::uint8_t>> resting_apart(std::vector<std::vector<std::uint8_t>> records) {
+    for (std::vector<std::uint8_t>& bytes : records) {
+      JobRecord r = deserialize(bytes);
+      for (std::size_t k = 0; k < r.fastest_mm_s.size(); ++k) r.fastest_mm_s[k] = k <= r.seed_index ? 1.0 : 0.0;
+      bytes = serialize(r);
+    }
+    return records;
+  }
+};
+
+// The analysis' mean: summed in seed order, then divided (ensemble_stats.cpp, mean_ci), so the
+// same values give the same bits.
+double mean_in_order(const std::vector<double>& values) {
+  double sum = 0;
+  for (const double v : values) sum += v;
+  return sum / double(values.size());
+}
+
+TEST(StudyAnalysis, KeepsEachSeedsOwnValueInSeedOrder) {
+  const SeedsRestingApart fixture;
+  const Study& study = fixture.study;
+  const StudyResult result = analyse(study, fixture.records);
+  const std::size_t film = metric_named("film_mm"), rest = metric_named("rest_s");
+  // The scene has every metric: each setting's value of each is the mean of its seeds' values, to
+  // the bit.
+  for (const SettingResult& s : result.settings) {
+    ASSERT_EQ(s.status, "ok");
+    for (std::size_t m = 0; m < metrics().size(); ++m) {
+      ASSERT_EQ(s.per_seed[m].size(), 3u) << metrics()[m].name;
+      EXPECT_EQ(s.value[m].value, mean_in_order(s.per_seed[m])) << metrics()[m].name;
+    }
+  }
+  // Each seed's value is what its own record gives: the rest time of its fastest particle's
+  // speeds, the film's mean over the snapshots' cells.
+  const double frame_s = 1.0 / study.scene().frame_rate_hz;
+  for (std::size_t j = 0; j < study.job_count(); ++j) {
+    const JobRecord r = deserialize(fixture.records[j]);
+    const SettingResult& s = result.settings[r.setting];
+    EXPECT_EQ(s.per_seed[rest].at(r.seed_index), rest_time_s(r.fastest_mm_s, frame_s)) << "job " << j;
+    EXPECT_EQ(s.per_seed[film].at(r.seed_index), mean_in_order(std::vector<double>(r.film_mm.begin(), r.film_mm.end())))
+        << "job " << j;
+  }
+  // The seeds differ (else their order could not show), in the rest time as made and in the film.
+  const SettingResult& reference = result.settings[0];
+  EXPECT_EQ(reference.per_seed[rest], (std::vector<double>{frame_s, 2 * frame_s, 3 * frame_s}));
+  EXPECT_NE(reference.per_seed[film].front(), reference.per_seed[film].back());
+}
+
+// study.h5 holds each seed's value of every metric (the scene has them all) as `<metric>_per_seed`
+// with the metric's unit; study.csv's last column is the latest seed's rest time (3 frames: 0.1 s,
+// where the first seed's is 0.0333 and the mean 0.0667), empty on the noise floor's row.
+TEST(StudyFiles, HoldEachSeedsOwnValueAndTheLatestRest) {
+  const SeedsRestingApart fixture;
+  const StudyResult result = analyse(fixture.study, fixture.records);
+  const std::filesystem::path dir = test::test_output_folder("study");
+  write_study_files(dir.string(), fixture.study, result, {});
+  const test::File file(dir / "study.h5");
+  for (std::size_t i = 0; i < result.settings.size(); ++i)
+    for (std::size_t m = 0; m < metrics().size(); ++m) {
+      char group[32];
+      std::snprintf(group, sizeof group, "settings/%03zu/", i);
+      const std::string name = group + std::string(metrics()[m].name) + "_per_seed";
+      const test::Dataset seeds(file, name);
+      EXPECT_EQ(test::dims_of(seeds), std::vector<hsize_t>{3}) << name;
+      EXPECT_EQ(test::read_all<double>(seeds, H5T_NATIVE_DOUBLE), result.settings[i].per_seed[m]) << name;
+      EXPECT_EQ(test::text_attribute(seeds, "unit").value, metrics()[m].unit) << name;
+    }
+  const std::vector<std::string> csv = test::lines_of(file_text(dir / "study.csv"));
+  ASSERT_EQ(csv.size(), result.settings.size() + 2);  // the header, each setting, the noise floor
+  EXPECT_EQ(test::fields_of(csv.front()).back(), "rest_s_latest_seed");
+  for (std::size_t row = 1; row + 1 < csv.size(); ++row) EXPECT_EQ(test::fields_of(csv[row]).back(), "0.1") << csv[row];
+  EXPECT_EQ(test::fields_of(csv.back()).back(), "") << csv.back();
 }
 
 std::string analysis_refusal(const Study& study, const std::vector<std::vector<std::uint8_t>>& records) {
