@@ -172,8 +172,8 @@ struct Pile {
     a.rest = rest.as<std::uint32_t>();
     a.anchor = anchor.as<float>();
     const std::size_t sort_bytes = backend->particle_sort_scratch_bytes(n, cell_count(model));
-    scratch = backend->allocate(particle_scratch_bytes(cell_count(model), n, sort_bytes));
-    point_particle_scratch(a, cell_count(model), scratch.data(), sort_bytes);
+    scratch = backend->allocate(particle_scratch_bytes(cell_count(model), line_node_count(model), n, sort_bytes));
+    point_particle_scratch(a, cell_count(model), line_node_count(model), scratch.data(), sort_bytes);
     clear_particles(*backend, a);  // every slot at rest; scratch defined
 
     // The lattice: slot s in row s / columns (row 0 at the bottom), spacing one diameter, born.

@@ -196,13 +196,15 @@ __global__ void place_kernel(Args args, BinScratch b) {
   if (t < args.at(ParticlePhase::bin).live_count) take_place(args, b, t);
 }
 
-// A film with depth's depth at each sorted particle, once all are in their places.
+// A film with depth's depth at each sorted particle, and its parcels' weight on each node of the
+// contact line's grid, once all are in their places.
 template <class Args>
 __global__ void depth_kernel(Args args) {
   wait_for_the_kernel_before();
   const ParticleArgs a = args.at(ParticlePhase::bin);
   const int i = blockIdx.x * blockDim.x + threadIdx.x;
   if (i < a.live_count) depth_particle(a.arrays, a.model, i);
+  if (std::uint32_t(i) < line_node_count(a.model)) line_node_weight(a.arrays, a.model, std::uint32_t(i));
 }
 
 // In a whole step the living particle then moves at once: its pair sums are its own slot's, and no
@@ -284,7 +286,11 @@ __global__ void __launch_bounds__(kClusterThreads, 1) frame_in_one_cluster(Plann
     for (int t = first; t < past; t += kClusterThreads) take_place(args, b, t);
     cluster.sync();
     if (has_depth(args.base.model)) {
-      for (int i = first; i < past; i += kClusterThreads) depth_particle(args.at(ParticlePhase::bin).arrays, args.base.model, i);
+      const ParticleArrays& sorted = args.at(ParticlePhase::bin).arrays;
+      for (int i = first; i < past; i += kClusterThreads) depth_particle(sorted, args.base.model, i);
+      const std::uint32_t nodes = line_node_count(args.base.model);
+      for (std::uint32_t n = blockIdx.x * kClusterThreads + threadIdx.x; n < nodes; n += kClusterBlocks * kClusterThreads)
+        line_node_weight(sorted, args.base.model, n);
       cluster.sync();
     }
     for (int i = first; i < past; i += kClusterThreads) collide<PlannedArgs, true>(args, i);
@@ -384,7 +390,10 @@ void launch_bin(const Args& args, const ParticleArgs& shape, int live_threads, c
   scan_counts(shape.arrays, shape.model, b, stream);
   launch<kWholeStep>(arrive_kernel<Args>, "arrive_kernel", blocks, stream, args, b);
   launch<kWholeStep>(place_kernel<Args>, "place_kernel", blocks, stream, args, b);
-  if (has_depth(shape.model)) launch<kWholeStep>(depth_kernel<Args>, "depth_kernel", blocks, stream, args);
+  if (has_depth(shape.model)) {
+    const int film_blocks = std::max(blocks, blocks_for(int(line_node_count(shape.model))));
+    launch<kWholeStep>(depth_kernel<Args>, "depth_kernel", film_blocks, stream, args);
+  }
 }
 
 // One phase on its own (the default stream): each its own launches.

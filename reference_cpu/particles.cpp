@@ -112,8 +112,12 @@ void cpu_twin(ParticlePhase phase, const ParticleArgs& a, int threads) {
       break;
     case ParticlePhase::bin:
       bin(a, threads);
-      if (has_depth(a.model))
+      if (has_depth(a.model)) {
         parallel_rows(n, threads_for_particles(n, threads), [&](int i) { depth_particle(a.arrays, a.model, i); });
+        const int nodes = int(line_node_count(a.model));
+        parallel_rows(nodes, threads_for_particles(nodes, threads),
+                      [&](int node) { line_node_weight(a.arrays, a.model, std::uint32_t(node)); });
+      }
       break;
     case ParticlePhase::collide:
       parallel_rows(n, threads_for_particles(n, threads), [&](int i) { collide_particle(a.arrays, a.model, i); });

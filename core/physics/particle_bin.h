@@ -29,6 +29,16 @@ BLEEDSIM_HD inline std::uint32_t cell_key_of(const ParticleArrays& p, const Part
   return std::uint32_t(cy) * std::uint32_t(m.cells_x) + std::uint32_t(cx);
 }
 
+// The sorted positions [begin, end) of the particles in cells x0 … x1 of row y: the cells of a row
+// are consecutive keys, so their particles are one run of the sorted order.
+struct SortedRun {
+  std::uint32_t begin, end;
+};
+BLEEDSIM_HD inline SortedRun row_run(const ParticleArrays& p, const ParticleModel& m, int y, int x0, int x1) {
+  const std::uint32_t row = std::uint32_t(y) * std::uint32_t(m.cells_x);
+  return {p.cell_start[row + std::uint32_t(x0)], p.cell_start[row + std::uint32_t(x1) + 1]};
+}
+
 // The n-th live slot in ascending slot order, n < live_count (the live range wraps round the ring):
 // the order the bin takes them in, and so the order it keeps within a cell.
 BLEEDSIM_HD inline int nth_live_slot_ascending(const ParticleArgs& a, int n) {

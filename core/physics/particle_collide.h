@@ -8,6 +8,7 @@
 #include "core/physics/counter_hash.h"
 #include "core/physics/hd.h"
 #include "core/physics/particle_bin.h"
+#include "core/physics/particle_line.h"
 #include "core/physics/particle_state.h"
 #include "core/physics/surface.h"
 
@@ -71,7 +72,7 @@ BLEEDSIM_HD inline float parcel_depth_at(const ParticleModel& m, float r) {
 struct PairSums {
   float ax = 0.0f, ay = 0.0f;  // mm/s²: the full-grown pairs' forces
   float depth = 0.0f;          // mm: a film with depth's depth here (bin's) ...
-  float cx = 0.0f, cy = 0.0f;  // 1/mm: ... and the gradient of its colour, Σ (V/h_j)·∇W: the edge's
+  float line = 0.0f;           // mm: ... and its share of the contact line (line_share)
   float hx = 0.0f, hy = 0.0f;  // mm: half of each overlap with a new particle, away from it
   bool crowded = false;        // a film with depth's birth: another birth nearer than kBirthsApart
   float sx = 0.0f, sy = 0.0f;  // the directions to the neighbours, weighted as the cohesion
@@ -150,11 +151,10 @@ BLEEDSIM_HD inline void add_pair(const ParticleModel& m, float dx, float dy, flo
 // yield for every particle, and up to the pinning besides for one on the film's edge (its
 // neighbours all on one side, or too few to surround it), where the contact line holds. A film
 // with depth has them as a stress and a force per unit length of the contact line: the parcel's
-// area V/h bears the yield stress, and its share of the line, (V/h)·|∇c| (which sums to the
-// film's perimeter, c the film's colour), the pinning; per unit mass, (τ_y/ρ + q_p·|∇c|)/h.
+// area V/h bears the yield stress, and its share of the line (which the parcels' shares sum to),
+// the pinning; per unit mass, (τ_y/ρ)/h + q_p·line/V.
 BLEEDSIM_HD inline float grip_from(const ParticleModel& m, const PairSums& sums) {
-  if (has_depth(m))
-    return (m.yield_stress + m.pinning_line * sqrtf(sums.cx * sums.cx + sums.cy * sums.cy)) / sums.depth;
+  if (has_depth(m)) return m.yield_stress / sums.depth + m.line_grip * sums.line;
   const bool on_edge = sums.sx * sums.sx + sums.sy * sums.sy > m.edge_openness * m.edge_openness ||
                        sums.company < m.edge_company;
   return on_edge ? m.yield + m.pinning : m.yield;
@@ -217,34 +217,13 @@ BLEEDSIM_HD inline void for_each_wall_image(const ParticleModel& m, float px, fl
   if (by_x && by_y) image(ix, iy);
 }
 
-// The edge's part of the film with depth's pair: the colour's gradient, toward the neighbour at
-// offset (dx, dy), of depth h_j: (V/h_j)·|∇W|.
-BLEEDSIM_HD inline void add_colour(const ParticleModel& m, float dx, float dy, float r, float other_depth,
-                                   PairSums* sums) {
-  const float toward = m.area_slope * kernel_slope(m, r) / (other_depth * r);
-  sums->cx -= toward * dx;
-  sums->cy -= toward * dy;
-}
-
-// An image of a parcel of depth `depth` pushes and colours as the parcel would.
-BLEEDSIM_HD inline void add_wall_images(const ParticleModel& m, float px, float py, float qx, float qy, float depth,
-                                        PairSums* sums) {
+// An image of a parcel pushes as the parcel would.
+BLEEDSIM_HD inline void add_wall_images(const ParticleModel& m, float px, float py, float qx, float qy, PairSums* sums) {
   for_each_wall_image(m, px, py, qx, qy, [&](float dx, float dy, float r2) {
     const float r = sqrtf(r2), push = film_push(m, r) / r;
     sums->ax += push * dx;
     sums->ay += push * dy;
-    add_colour(m, dx, dy, r, depth, sums);
   });
-}
-
-// The sorted positions [begin, end) of the particles in cells x0 … x1 of row y: the cells of a row
-// are consecutive keys, so their particles are one run of the sorted order.
-struct SortedRun {
-  std::uint32_t begin, end;
-};
-BLEEDSIM_HD inline SortedRun row_run(const ParticleArrays& p, const ParticleModel& m, int y, int x0, int x1) {
-  const std::uint32_t row = std::uint32_t(y) * std::uint32_t(m.cells_x);
-  return {p.cell_start[row + std::uint32_t(x0)], p.cell_start[row + std::uint32_t(x1) + 1]};
 }
 
 // Visits every neighbour of the particle at sorted position i within the range, in the 3 × 3 cells
@@ -295,8 +274,8 @@ BLEEDSIM_HD inline void depth_particle(const ParticleArrays& p, const ParticleMo
 // The pair forces on the particle at sorted position i from every neighbour within the range
 // (for_each_neighbour). A neighbour's velocity and birth are read only once it is within the range
 // (about a third of the particles of the 3 × 3 cells are), and its slot only when it coincides
-// with this one (the slot names the pair's direction only then). A film with depth adds its edge's
-// colour and the walls' images. A parcel being born is in the film's depth and pushes the film as
+// with this one (the slot names the pair's direction only then). A film with depth adds the walls'
+// images and its share of the contact line. A parcel being born is in the film's depth and pushes the film as
 // any parcel does, but the film does not push it back: it meets only the others being born, and
 // they part (pair_growth). (Left out of the film, a burst was a hole the film around it ran into at
 // twice g/γ; pushed by it, a burst into a pool is blasted as births by age were.)
@@ -316,12 +295,12 @@ BLEEDSIM_HD inline void collide_particle(const ParticleArrays& p, const Particle
     const std::uint32_t other = r2 > 0.0f ? 0u : p.sorted_slot[j];
     const FloatPair w = pair_at(p.sorted_velocity, j);
     add_pair(m, dx, dy, vx, vy, pair_growth(m, birth, other_birth), slot, w.x, w.y, other, &sums);
-    if (!in_film) return;
-    const float other_depth = p.sorted_depth[j];
-    if (r2 > 0.0f) add_colour(m, dx, dy, sqrtf(r2), other_depth, &sums);
-    add_wall_images(m, px, py, qx, qy, other_depth, &sums);
+    if (in_film) add_wall_images(m, px, py, qx, qy, &sums);
   });
-  if (in_film) add_wall_images(m, px, py, px, py, sums.depth, &sums);
+  if (in_film) {
+    add_wall_images(m, px, py, px, py, &sums);
+    sums.line = line_share(p, m, px, py);
+  }
   finish_pair_sums(p, m, slot, sums);
 }
 

@@ -32,13 +32,18 @@ struct ParticleModel {
   float pressure;          // mm/s²: the film with depth's push, this·q·(1 − q)³ at q = r/R (0: a contact)
   float kernel_inverse;    // 1/mm: 1/R, the film's kernel
   float parcel_depth;      // mm: a parcel's own depth at its centre, V·W(0) = 7V/(π·R²)
-  float area_slope;        // 140·V/(π·R³): a parcel's area V/h times |∇W| is this·q·(1 − q)³/h
   float damping;           // 1/s: contact acceleration per mm/s of approach speed
   float cohesion;          // mm/s²: a neighbour's pull within the range
   float pinning;           // mm/s²: the grip on a particle of the film's edge (the contact)
   float yield;             // mm/s²: the grip on every particle (the contact)
   float yield_stress;      // mm²/s²: a film with depth's yield stress per unit density, τ_y/ρ ...
-  float pinning_line;      // mm³/s²: ... and its contact line's pinning, a force per unit length per unit density
+  float line_grip;         // 1/s²: ... and its contact line's pinning per parcel, q_p/V: the grip per mm of
+                           // a parcel's share of the line (core/physics/particle_line.h) ...
+  int line_nodes_x;        // ... measured on a grid of this many nodes a row ...
+  int line_nodes_y;        // ... and a column ...
+  float line_step_x;       // mm: ... this far apart (line_grid_mm, fitted to the panel) ...
+  float line_step_y;
+  float wetted_weight;     // ... each of which is wet once its parcels' weights sum to this
   float edge_openness;     // a particle whose neighbours' directions sum to more than this is on the edge
   float edge_company;      // ... and so is one with fewer neighbours than this (a drop of a few)
   float birth_steps;       // a pair with a particle this new has no force: its overlap is shifted away ...
@@ -126,6 +131,8 @@ struct ParticleArrays {
   std::uint32_t* sorted_birth;  // what collide needs of its birth: its age (the contact's births end by age),
                                 // or its rest word (a film with depth's end by distance: kBeingBorn)
   float* sorted_depth;       // mm: a film with depth's depth at each sorted particle, bin → collide
+  float* line_weight;        // a film with depth's parcels' weights on each node of its contact line's grid,
+                             // bin → collide
   // cells + 1 entries: cell c's particles are sorted positions [cell_start[c], cell_start[c + 1]),
   // and cell_start[cells] is the number of living particles.
   std::uint32_t* cell_start;

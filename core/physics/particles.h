@@ -8,7 +8,8 @@
 //
 // One step, in the order a backend runs it (docs/particles.md has the model and its limits):
 //   emit       new particles at the bleeding cuts, into the ring buffer (oldest overwritten)
-//   bin        each live particle's grid cell; a stable sort of (cell, slot); each cell's range
+//   bin        each live particle's grid cell; a stable sort of (cell, slot); each cell's range; a film
+//              with depth's depth at each particle and its contact line's grid (particle_line.h)
 //   collide    contact and cohesion from every neighbour in the 3 × 3 cells around, in fixed order
 //   integrate  gravity, contacts and drag (semi-implicit Euler), the mucosa's grip, panel bounds, age
 // Once per frame the splat stage (core/physics/splat.h) turns the live particles into a film of blood.
@@ -27,6 +28,7 @@
 #include "core/physics/particle_collide.h"
 #include "core/physics/particle_emit.h"
 #include "core/physics/particle_integrate.h"
+#include "core/physics/particle_line.h"
 #include "core/physics/particle_state.h"
 
 namespace bleedsim {

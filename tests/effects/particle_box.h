@@ -84,8 +84,8 @@ class ParticleBox {
     a.age = age_.as<std::uint32_t>();
     a.rest = rest_.as<std::uint32_t>();
     a.anchor = anchor_.as<float>();
-    scratch_ = cpu_->allocate(particle_scratch_bytes(cell_count(model_), n_, 0));
-    point_particle_scratch(a, cell_count(model_), scratch_.data(), 0);
+    scratch_ = cpu_->allocate(particle_scratch_bytes(cell_count(model_), line_node_count(model_), n_, 0));
+    point_particle_scratch(a, cell_count(model_), line_node_count(model_), scratch_.data(), 0);
     clear_particles(*cpu_, a);
     for (int i = 0; i < n_; ++i) {
       a.position[2 * i] = float(points[std::size_t(i)].x);
@@ -107,6 +107,8 @@ class ParticleBox {
   int size() const { return n_; }
   double dt() const { return model_.dt_s; }
 
+  // The bin alone: sorted copies, a film with depth's depths and contact line's grid.
+  void bin() { cpu_twin(ParticlePhase::bin, args_, 1); }
   // One physics step: bin, collide, integrate.
   void step() {
     for (ParticlePhase phase : {ParticlePhase::bin, ParticlePhase::collide, ParticlePhase::integrate})

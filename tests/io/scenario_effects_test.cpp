@@ -336,6 +336,23 @@ TEST(ScenarioParticles, AFilmWithDepthNeedsGravityIntoTheMucosa) {
   EXPECT_EQ(normal_gravity_mm_s2(given.effects.get<ParticleParams>()), 500.0);
 }
 
+// A film with depth's contact line is measured on a grid fitted to the panel (core/physics/
+// particle_line.h): 16 / 0.52 = 30.8 squares across, so 31 of 16/31 mm; 12 / 0.52 = 23.1 down, so 23 of
+// 12/23 mm. A grid finer than a parcel would leave dry nodes inside the film, and is refused at its key.
+TEST(ScenarioParticles, AFilmWithDepthsContactLineGridFitsThePanelAndNoFinerThanAParcel) {
+  const ParticleModel m = resolve_particles(parse_scenario(particles_with("film_depth = true\n"), kPath).scene).model;
+  EXPECT_EQ(m.line_nodes_x, 32);
+  EXPECT_EQ(m.line_nodes_y, 24);
+  EXPECT_FLOAT_EQ(m.line_step_x, float(16.0 / 31.0));
+  EXPECT_FLOAT_EQ(m.line_step_y, float(12.0 / 23.0));
+  // A node is wet at 0.01 mm: that depth over a square is this much of a parcel's 0.004 mm³.
+  EXPECT_FLOAT_EQ(m.wetted_weight, float(0.01 * (16.0 / 31.0) * (12.0 / 23.0) / 0.004));
+  EXPECT_TRUE(refused_at(particles_with("film_depth = true\nline_grid_mm = 0.1\n"), kParticlesEnd + 1,
+                         "particles.line_grid_mm", "must be at least diameter_mm, 0.2 mm"));
+  EXPECT_TRUE(refused_at(particles_with("film_depth = true\nline_grid_mm = 0\n"), kParticlesEnd + 1,
+                         "particles.line_grid_mm", "must be greater than 0"));
+}
+
 // A film with depth's step follows its fastest wave and the speed limit; a sub-step past the waves'
 // limit is refused with what sets it. On the 16 × 12 mm panel the ring's 65.5 mm³ pools 0.916 mm deep
 // against the floor (a wedge √(2·65.5·0.1025/16) deep, 8.9 mm long: the 12 mm panel holds it), and

@@ -9,9 +9,9 @@ namespace {
 // Offsets of the scratch arrays, one after another, each aligned for vector loads.
 struct ScratchLayout {
   std::size_t acceleration, shift, grip, neighbourhood, cell_key, sorted_key, sorted_slot, sorted_position,
-      sorted_velocity, sorted_birth, sorted_depth, cell_start, fates, sort_scratch, total;
+      sorted_velocity, sorted_birth, sorted_depth, line_weight, cell_start, fates, sort_scratch, total;
 
-  ScratchLayout(std::size_t cells, int capacity, std::size_t sort_scratch_bytes) {
+  ScratchLayout(std::size_t cells, std::size_t line_nodes, int capacity, std::size_t sort_scratch_bytes) {
     const std::size_t n = std::size_t(capacity);
     std::size_t at = 0;
     const auto take = [&](std::size_t bytes) {
@@ -30,6 +30,7 @@ struct ScratchLayout {
     sorted_velocity = take(2 * n * sizeof(float));
     sorted_birth = take(n * sizeof(std::uint32_t));
     sorted_depth = take(n * sizeof(float));
+    line_weight = take(line_nodes * sizeof(float));
     cell_start = take((cells + 1) * sizeof(std::uint32_t));
     fates = take(sizeof(AspiratedFates));
     sort_scratch = take(sort_scratch_bytes);
@@ -44,12 +45,14 @@ T* at_offset(void* base, std::size_t offset) {
 
 }  // namespace
 
-std::size_t particle_scratch_bytes(std::size_t cells, int capacity, std::size_t sort_scratch_bytes) {
-  return ScratchLayout(cells, capacity, sort_scratch_bytes).total;
+std::size_t particle_scratch_bytes(std::size_t cells, std::size_t line_nodes, int capacity,
+                                   std::size_t sort_scratch_bytes) {
+  return ScratchLayout(cells, line_nodes, capacity, sort_scratch_bytes).total;
 }
 
-void point_particle_scratch(ParticleArrays& a, std::size_t cells, void* base, std::size_t sort_scratch_bytes) {
-  const ScratchLayout layout(cells, a.capacity, sort_scratch_bytes);
+void point_particle_scratch(ParticleArrays& a, std::size_t cells, std::size_t line_nodes, void* base,
+                            std::size_t sort_scratch_bytes) {
+  const ScratchLayout layout(cells, line_nodes, a.capacity, sort_scratch_bytes);
   a.acceleration = at_offset<float>(base, layout.acceleration);
   a.shift = at_offset<float>(base, layout.shift);
   a.grip = at_offset<float>(base, layout.grip);
@@ -61,6 +64,7 @@ void point_particle_scratch(ParticleArrays& a, std::size_t cells, void* base, st
   a.sorted_velocity = at_offset<float>(base, layout.sorted_velocity);
   a.sorted_birth = at_offset<std::uint32_t>(base, layout.sorted_birth);
   a.sorted_depth = at_offset<float>(base, layout.sorted_depth);
+  a.line_weight = at_offset<float>(base, layout.line_weight);
   a.cell_start = at_offset<std::uint32_t>(base, layout.cell_start);
   a.fates = at_offset<AspiratedFates>(base, layout.fates);
   a.sort_scratch = sort_scratch_bytes ? at_offset<void>(base, layout.sort_scratch) : nullptr;

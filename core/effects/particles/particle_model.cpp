@@ -152,6 +152,29 @@ ParamProblem cell_holds_the_range(const ParticleParams& p, const Scene& scene) {
                          " mm (got " + format_number(p.cell_mm) + ")"};
 }
 
+LineGrid line_grid(const ParticleParams& p, const Domain& domain) {
+  const auto steps_in_length = [&](double length_mm) {
+    return std::max(1.0, std::round(length_mm / p.line_grid_mm));
+  };
+  const double steps_x = steps_in_length(domain.width_mm), steps_y = steps_in_length(domain.height_mm);
+  const bool countable = (steps_x + 1.0) * (steps_y + 1.0) < double(kMaxGridCells);
+  return {countable ? int(steps_x) : 0, countable ? int(steps_y) : 0, domain.width_mm / steps_x,
+          domain.height_mm / steps_y};
+}
+
+ParamProblem line_grid_holds_a_parcel(const ParticleParams& p, const Scene& scene) {
+  if (!p.film_depth) return {};
+  if (p.line_grid_mm < p.diameter_mm)
+    return {"line_grid_mm", "must be at least diameter_mm, " + format_number(p.diameter_mm) +
+                                " mm: finer, the film's own parcels leave dry nodes between them, and its inside "
+                                "has a contact line (got " + format_number(p.line_grid_mm) + ")"};
+  if (line_grid(p, scene.domain).steps_x == 0)
+    return {"line_grid_mm", "the contact line's grid would have more than 4e9 nodes on the " +
+                                format_number(scene.domain.width_mm) + " × " + format_number(scene.domain.height_mm) +
+                                " mm panel: use a larger line_grid_mm"};
+  return {};
+}
+
 ParamProblem substep_inside_stability_limit(const ParticleParams& p, const Scene& scene) {
   const ParticleMechanics m = particle_mechanics(p, scene);
   if (m.dt_s < m.step_limit_s && m.substeps <= kMaxSubsteps) return {};
@@ -247,13 +270,18 @@ ParticleSettings resolve_particles(const ParticleParams& p, const Scene& scene) 
   m.pressure = float(mech.pressure_mm_s2);
   m.cohesion = float(mech.cohesion_mm_s2);
   if (p.film_depth) {
-    // The grip as a stress and a line force (grip_from), the kernel's depth and slope per parcel.
+    // The grip as a stress and a line force (grip_from): the kernel's depth per parcel, the line's grid.
     const double kernel = mech.kernel_mm, v = p.particle_volume_mm3;
     m.kernel_inverse = float(1.0 / kernel);
     m.parcel_depth = float(7.0 * v / (M_PI * kernel * kernel));
-    m.area_slope = float(140.0 * v / (M_PI * kernel * kernel * kernel));
     m.yield_stress = float(p.yield_mm2_s2);
-    m.pinning_line = float(p.pinning_mm3_s2);
+    const LineGrid line = line_grid(p, scene.domain);
+    m.line_grip = float(p.pinning_mm3_s2 / v);
+    m.line_nodes_x = line.steps_x + 1;
+    m.line_nodes_y = line.steps_y + 1;
+    m.line_step_x = float(line.step_x_mm);
+    m.line_step_y = float(line.step_y_mm);
+    m.wetted_weight = float(kWettedDepthMm * line.step_x_mm * line.step_y_mm / v);
   } else {
     m.pinning = float(mech.pinning_mm_s2);
     m.yield = float(mech.yield_mm_s2);

@@ -43,6 +43,13 @@ constexpr double kKernelSupport = 2.6;
 // quadrature).
 constexpr double kKernelWaveNumber = 10.18;
 
+// A node of the contact line's grid (line_grid_mm) is wet, its colour 1, once the film there is this
+// deep (mm); thinner, its colour is its depth over this. Far below the yield's depth (0.05 mm under
+// the default's gravity), where films stop, so that every film that runs is wholly wet inside; a lone
+// parcel at the shipped size (0.004 mm³ over a 0.52 mm square: 0.015 mm) colours its nodes 0.37 (at a
+// square's centre) to 1 (on a node): a drop, with its own line.
+constexpr double kWettedDepthMm = 0.01;
+
 // Gravity into the mucosa: gravity_normal_mm_s2, or when that is 0 what Earth's leaves after the
 // panel's own, √(9810² − |g|²) (0 when |g| is Earth's or more).
 double normal_gravity_mm_s2(const ParticleParams& params);
@@ -108,11 +115,21 @@ SplatModel make_splat_model(const ParticleParams& params, const Domain& domain);
 // device's −y). Zero without particles.
 Eigen::Vector3d device_gravity_mm_s2(const Scene& scene);
 
+// A film with depth's contact line is measured on a grid of nodes (core/physics/particle_line.h):
+// line_grid_mm apart, fitted to the panel so that nodes lie on its walls. Steps 0: more nodes than
+// a grid may have.
+struct LineGrid {
+  int steps_x, steps_y;        // the grid's squares along the panel's width and height
+  double step_x_mm, step_y_mm;
+};
+LineGrid line_grid(const ParticleParams& params, const Domain& domain);
+
 // The limits, rules of particle_table() that depend on the model's constants.
 ParamProblem cell_holds_the_range(const ParticleParams& params, const Scene& scene);
 ParamProblem grid_keyable(const ParticleParams& params, const Scene& scene);
 ParamProblem substep_inside_stability_limit(const ParticleParams& params, const Scene& scene);
 ParamProblem lifetime_countable(const ParticleParams& params, const Scene& scene);
 ParamProblem step_within_a_radius(const ParticleParams& params, const Scene& scene);
+ParamProblem line_grid_holds_a_parcel(const ParticleParams& params, const Scene& scene);
 
 }  // namespace bleedsim

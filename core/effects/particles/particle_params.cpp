@@ -147,6 +147,9 @@ const ParamTable<ParticleParams>& particle_table() {
         "how far beyond contact cohesion reaches"},
        {"pinning_mm3_s2", T::number, BLEEDSIM_MEMBER(P, pinning_mm3_s2), "mm³/s²", {0, 1e6},
         "the mucosa's grip on the film's edge (contact-angle hysteresis), per unit length per unit density"},
+       {"line_grid_mm", T::number, BLEEDSIM_MEMBER(P, line_grid_mm), "mm", {0, 1e3, true},
+        "with film_depth, how far apart the nodes are that the film's edge is found on (fitted to the panel): its "
+        "contact line, which the pinning holds, is measured at this scale whatever the particles"},
        {"yield_mm2_s2", T::number, BLEEDSIM_MEMBER(P, yield_mm2_s2), "mm²/s²", {0, 1e6},
         "blood's yield stress per unit density: the grip on every particle"},
        {"birth_s", T::number, BLEEDSIM_MEMBER(P, birth_s), "s", {0, 10},
@@ -185,6 +188,7 @@ const ParamTable<ParticleParams>& particle_table() {
         substep_inside_stability_limit},
        {"the lifetime is at most 2e9 steps", lifetime_countable},
        {"max_speed_mm_s × the sub-step is less than half a diameter", step_within_a_radius},
+       {"with film_depth, line_grid_mm is at least the diameter, and its grid has fewer than 4e9 nodes", line_grid_holds_a_parcel},
        {"a new particle's fastest speed, |velocity_mm_s| + √2 × velocity_jitter_mm_s, is within max_speed_mm_s",
         emitted_within_the_limit},
        {"one particle's whole blood in a single pixel fits the splat's fixed-point sum", deposit_fits}},

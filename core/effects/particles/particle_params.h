@@ -55,6 +55,10 @@ struct ParticleParams {
   double cohesion_mm3_s2 = 20.0;
   double cohesion_range = 0.3;
   double pinning_mm3_s2 = 30.0;
+  // With film_depth, how far apart the nodes are that its contact line (the pinning's length) is
+  // measured on: fixed in mm, so that the line is the same whatever the particles
+  // (core/physics/particle_line.h); the shipped kernel's support.
+  double line_grid_mm = 0.52;
   double yield_mm2_s2 = 50.0;         // the film's yield stress per unit density (mm²/s²)
   double birth_s = 0.1;              // a new particle is shifted out of overlaps, not pushed, over this
                                      // (film_depth: at most this, kLongestFilmBirthS unless given)

@@ -108,8 +108,8 @@ ParticleStage::ParticleStage(const StageKind& kind, const Scene& scene, const Re
   a.anchor = anchor.data.as<float>();
 
   const std::size_t sort_bytes = backend.particle_sort_scratch_bytes(capacity, cell_count(model));
-  scratch_ = allocate(backend, particle_scratch_bytes(cell_count(model), capacity, sort_bytes));
-  point_particle_scratch(a, cell_count(model), scratch_.data(), sort_bytes);
+  scratch_ = allocate(backend, particle_scratch_bytes(cell_count(model), line_node_count(model), capacity, sort_bytes));
+  point_particle_scratch(a, cell_count(model), line_node_count(model), scratch_.data(), sort_bytes);
   plan_ = allocate(backend, plan_bytes(scene, resolved));
 
   clear_particles(backend, a);
@@ -126,9 +126,9 @@ MemoryParts ParticleStage::memory_for(const Scene& scene, const Resolved& resolv
   // The scratch is per slot and per grid cell: its grid part is what the cells add to it. The cell
   // count is below kMaxGridCells once the scene's checks have passed.
   const Count grid_cells = settings_of(resolved).cells;
-  const std::size_t cells = grid_cells.to<std::size_t>();
-  const std::size_t per_slot = particle_scratch_bytes(0, p.capacity, sort_scratch_bound(n, 0));
-  const std::size_t with_grid = particle_scratch_bytes(cells, p.capacity, sort_scratch_bound(n, cells));
+  const std::size_t cells = grid_cells.to<std::size_t>(), line_nodes = line_node_count(settings_of(resolved).model);
+  const std::size_t per_slot = particle_scratch_bytes(0, 0, p.capacity, sort_scratch_bound(n, 0));
+  const std::size_t with_grid = particle_scratch_bytes(cells, line_nodes, p.capacity, sort_scratch_bound(n, cells));
   MemoryParts parts{{"particles.capacity", std::to_string(p.capacity) + " particle slots", Count(fields) + per_slot},
                     {p.cell_mm > 0 ? "particles.cell_mm" : "particles.diameter_mm",
                      "a collision grid of " + std::to_string(grid_cells.value()) + " cells", with_grid - per_slot},
