@@ -348,7 +348,7 @@ TEST(ScenarioParticles, AFilmWithDepthsContactLineGridFitsThePanelAndNoFinerThan
   // A node is wet at 0.01 mm: that depth over a square is this much of a parcel's 0.004 mm³.
   EXPECT_FLOAT_EQ(m.wetted_weight, float(0.01 * (16.0 / 31.0) * (12.0 / 23.0) / 0.004));
   EXPECT_TRUE(refused_at(particles_with("film_depth = true\nline_grid_mm = 0.1\n"), kParticlesEnd + 1,
-                         "particles.line_grid_mm", "must be at least diameter_mm, 0.2 mm"));
+                         "particles.line_grid_mm", "must be at least diameter_mm, 0.2 mm, once fitted to the panel: "));
   EXPECT_TRUE(refused_at(particles_with("film_depth = true\nline_grid_mm = 0\n"), kParticlesEnd + 1,
                          "particles.line_grid_mm", "must be greater than 0"));
 }

@@ -164,14 +164,18 @@ LineGrid line_grid(const ParticleParams& p, const Domain& domain) {
 
 ParamProblem line_grid_holds_a_parcel(const ParticleParams& p, const Scene& scene) {
   if (!p.film_depth) return {};
-  if (p.line_grid_mm < p.diameter_mm)
-    return {"line_grid_mm", "must be at least diameter_mm, " + format_number(p.diameter_mm) +
-                                " mm: finer, the film's own parcels leave dry nodes between them, and its inside "
-                                "has a contact line (got " + format_number(p.line_grid_mm) + ")"};
-  if (line_grid(p, scene.domain).steps_x == 0)
-    return {"line_grid_mm", "the contact line's grid would have more than 4e9 nodes on the " +
-                                format_number(scene.domain.width_mm) + " × " + format_number(scene.domain.height_mm) +
-                                " mm panel: use a larger line_grid_mm"};
+  const LineGrid grid = line_grid(p, scene.domain);
+  const std::string panel =
+      " on the " + format_number(scene.domain.width_mm) + " × " + format_number(scene.domain.height_mm) + " mm panel";
+  if (grid.steps_x == 0)
+    return {"line_grid_mm",
+            "the contact line's grid would have more than 4e9 nodes" + panel + ": use a larger line_grid_mm"};
+  const double finest = std::min(grid.step_x_mm, grid.step_y_mm);
+  if (finest < p.diameter_mm)
+    return {"line_grid_mm", "must be at least diameter_mm, " + format_number(p.diameter_mm) + " mm, once fitted to the panel" +
+                                (finest < p.line_grid_mm ? " (" + format_number(finest) + " mm" + panel + ")" : "") +
+                                ": finer, the film's own parcels leave dry nodes between them, and its inside has a "
+                                "contact line (got " + format_number(p.line_grid_mm) + ")"};
   return {};
 }
 
