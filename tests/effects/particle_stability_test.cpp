@@ -271,7 +271,8 @@ TEST(ParticleRest, TheDefaultPanelWithAFilmOfDepthStopsAndStaysStopped) {
   for (const std::uint64_t seed : {1, 2, 3, 4}) {
     const RestOfThePanel r = rest_of_the_default_panel(true, seed);
     ASSERT_GE(r.stopped_s, 0.0) << "seed " << seed;
-    EXPECT_LE(r.stopped_s, r.end_s - 1.0) << "seed " << seed;  // a second left to watch it rest
+    // Not physics: a second left so that "stays stopped" is watched over 30 frames at least.
+    EXPECT_LE(r.stopped_s, r.end_s - 1.0) << "seed " << seed;
     EXPECT_LE(r.fastest_after_mm_s, kSlow) << "seed " << seed;
   }
 }
